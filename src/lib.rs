@@ -1,0 +1,25 @@
+//! sherd: orient 3D scans of archaeological pottery fragments and draw them as
+//! archaeological illustrations.
+//!
+//! The crate is a pipeline of layers, each depending only on the ones listed before it:
+//!
+//! * [`mesh`]: the [`mesh::Mesh`] type, scan readers and writers, repair, normals,
+//!   decimation, smoothing, spatial queries.
+//! * [`synth`]: synthetic sherds with known axes, the test bed of every later layer.
+//! * [`orient`]: the rotation axis ([`orient::Axis`]) from normals or three points
+//!   (Wilczek et al. 2018, section 2.2).
+//! * [`refine`]: refinement criteria (section 2.3): circles, Pareto, profile, tangent.
+//! * [`profile`]: sections in the rz-plane, measurements, revolution, regularity.
+//! * [`draw`]: the archaeological illustration (section 2.4) and its writers.
+//! * [`ffi`]: the stable C ABI; no algorithm lives there.
+
+pub mod error;
+pub mod mesh;
+pub mod synth;
+pub mod orient;
+pub mod refine;
+pub mod profile;
+pub mod draw;
+pub mod ffi;
+
+pub use error::{Error, Result};

@@ -1,0 +1,2 @@
+//! Sections in the rz-plane, measurements (rim/base radius, sector angle, height, wall
+//! thickness, capacity), revolution into a 3D reconstruction, and vessel regularity.
