@@ -126,6 +126,38 @@ impl Axis {
     }
 }
 
+/// The paper's accuracy measure (Wilczek et al. 2018, section 3): the mean distance in
+/// millimetres between the fragment's points placed in the oriented frame by `estimated`
+/// and by `truth`, after the best shift along and turn about the axis (neither is
+/// determined by an axis, so neither counts as error). The fit is closed-form: the
+/// shift is the mean height difference, the turn the 2D Procrustes angle.
+pub fn mean_point_distance_mm(points: &[Point], estimated: &Axis, truth: &Axis) -> f64 {
+    if points.is_empty() {
+        return 0.0;
+    }
+    let reference = points[0];
+    let estimated_frame = estimated.to_oriented_frame(&reference);
+    let true_frame = truth.to_oriented_frame(&reference);
+    let pairs: Vec<(Point, Point)> = points.iter().map(|p| (estimated_frame * p, true_frame * p)).collect();
+    let n = pairs.len() as f64;
+    let shift = pairs.iter().map(|(e, t)| t.z - e.z).sum::<f64>() / n;
+    let (mut cosine_sum, mut sine_sum) = (0.0, 0.0);
+    for (e, t) in &pairs {
+        cosine_sum += e.x * t.x + e.y * t.y;
+        sine_sum += e.x * t.y - e.y * t.x;
+    }
+    let turn = sine_sum.atan2(cosine_sum);
+    let (sin, cos) = turn.sin_cos();
+    pairs
+        .iter()
+        .map(|(e, t)| {
+            let placed = Point::new(cos * e.x - sin * e.y, sin * e.x + cos * e.y, e.z + shift);
+            (placed - t).norm()
+        })
+        .sum::<f64>()
+        / n
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -151,6 +183,24 @@ mod tests {
         let frame = axis.to_oriented_frame(&Point::new(1.0, 0.0, 0.0));
         let d = frame * axis.direction.into_inner();
         assert!((d - Vector::z()).norm() < 1e-12);
+    }
+
+    #[test]
+    fn mean_point_distance_ignores_shift_and_turn_but_not_tilt() {
+        let truth = Axis::new(Point::new(1.0, 2.0, 3.0), Vector::new(0.1, 0.2, 1.0));
+        let points: Vec<Point> = (0..50)
+            .map(|i| {
+                let a = i as f64 * 0.05;
+                truth.point + Vector::new(80.0 * a.cos(), 80.0 * a.sin(), i as f64)
+            })
+            .collect();
+        let shifted = Axis::new(truth.point + truth.direction.into_inner() * 17.0, truth.direction.into_inner());
+        assert!(mean_point_distance_mm(&points, &shifted, &truth) < 1e-9);
+        let tilted = Axis::new(truth.point, truth.rotation_from_z() * Vector::new(0.05, 0.0, 1.0));
+        let error = mean_point_distance_mm(&points, &tilted, &truth);
+        assert!(error > 0.5, "a 3 degree tilt must show, got {error}");
+        let flipped = truth.flipped();
+        assert!(mean_point_distance_mm(&points, &flipped, &truth) > 10.0);
     }
 
     #[test]

@@ -4,4 +4,4 @@
 
 pub mod axis;
 
-pub use axis::Axis;
+pub use axis::{mean_point_distance_mm, Axis, AxisRecord};
