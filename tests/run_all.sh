@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# The whole test suite of sherd, from a fresh Debian machine with Rust and Python:
+# installs what the tests need (Debian packages, Python packages, cbindgen), builds,
+# and runs the Rust tests, the header check, the C/C++ consumers and the Python tests.
+#
+#   bash tests/run_all.sh
+#
+# Tests that compare with MeshLab (pymeshlab) or use external tools fail instead of
+# skipping here (SHERD_REQUIRE_*), so a green run means they really ran. Tests that read
+# ../shared/data skip with a message where it is absent.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+root=$(pwd)
+step() { printf '\n==> %s\n' "$*"; }
+
+step "system packages"
+packages=(ghostscript valgrind libgl1 libglu1-mesa pkg-config)
+missing=()
+for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
+if [ ${#missing[@]} -gt 0 ]; then
+  if [ "$(id -u)" = 0 ]; then SUDO=""; else SUDO="sudo"; fi
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
+
+step "python packages"
+python3 -m pip install -q --disable-pip-version-check -r tests/requirements.txt
+
+step "cbindgen"
+export PATH="$HOME/.cargo/bin:$PATH"
+command -v cbindgen >/dev/null 2>&1 || cargo install -q cbindgen --locked
+
+export SHERD_REQUIRE_PYMESHLAB=1 SHERD_REQUIRE_TOOLS=1
+
+step "build (release)"
+cargo build --release --all-targets
+
+step "header is up to date with src/ffi"
+if [ -f cbindgen.toml ]; then
+  cbindgen --quiet --config cbindgen.toml --crate sherd --verify --output include/sherd.h
+fi
+
+step "Rust tests"
+cargo test --release --all-targets
+
+step "C and C++ consumers"
+if [ -f tests/c/run.sh ]; then bash tests/c/run.sh; fi
+
+step "Python tests"
+if compgen -G "tests/python/test_*.py" >/dev/null; then
+  python3 -m pytest -q tests/python
+fi
+
+step "all tests passed"
