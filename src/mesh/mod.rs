@@ -3,6 +3,15 @@
 //! scans, repair, vertex normals, quadric decimation and Laplacian smoothing.
 
 pub mod atomic;
+pub mod decimate;
+pub mod io;
+pub mod normals;
+pub mod occlusion;
+pub mod quadric;
+pub mod repair;
+pub mod smooth;
+pub mod spatial;
+pub mod topology;
 
 use nalgebra::{Point3, Vector3};
 

@@ -1,0 +1,1 @@
+//! Quadric edge-collapse decimation.

@@ -1,0 +1,1 @@
+//! Scan readers and writers (PLY, OBJ+MTL+texture, STL, XYZ), all producing one [`crate::mesh::Mesh`].

@@ -1,0 +1,1 @@
+//! Vertex normals, angle- or area-weighted, oriented outward.

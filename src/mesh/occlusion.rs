@@ -1,0 +1,1 @@
+//! Ambient occlusion per vertex.

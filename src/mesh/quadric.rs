@@ -1,0 +1,1 @@
+//! Error quadrics (Garland and Heckbert 1997).

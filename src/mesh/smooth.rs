@@ -1,0 +1,1 @@
+//! Laplacian and HC smoothing.

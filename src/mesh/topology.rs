@@ -1,0 +1,1 @@
+//! Edge and vertex adjacency, boundary and non-manifold edges, connected components.

@@ -1,0 +1,1 @@
+//! Vessel regularity maps.

@@ -1,0 +1,1 @@
+//! 3D reconstruction by revolution of the profile.

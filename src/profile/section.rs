@@ -1,0 +1,1 @@
+//! The profile section: the cut of the oriented mesh by a half-plane through the axis.
