@@ -738,6 +738,10 @@ fn skip_list<B: Body>(body: &mut B, count: ScalarType, item: ScalarType) -> std:
 }
 
 fn skip_element<B: Body>(name: &str, body: &mut B, element: &Element) -> Result<()> {
+    if element.properties.is_empty() {
+        // Nothing to read, however large the count: never loop over a lying count.
+        return Ok(());
+    }
     for index in 0..element.count {
         body.begin_record();
         for property in &element.properties {
@@ -793,9 +797,6 @@ pub(super) fn parse_ply(bytes: &[u8], name: &str, folder: Option<&Path>) -> Resu
     let Some(vertex_element) = header.elements.iter().find(|e| e.name == "vertex") else {
         return Err(Error::parse(name, "header", "the header declares no vertex element"));
     };
-    if vertex_element.count > u32::MAX as u64 {
-        return Err(Error::parse(name, format!("header line {}", vertex_element.line), format!("{} vertices declared: more than the 4294967295 a mesh can index", vertex_element.count)));
-    }
     // Refuse counts the file cannot hold before any allocation.
     let mut needed: u128 = 0;
     for element in &header.elements {
@@ -810,6 +811,9 @@ pub(super) fn parse_ply(bytes: &[u8], name: &str, folder: Option<&Path>) -> Resu
                 ),
             ));
         }
+    }
+    if vertex_element.count > u32::MAX as u64 {
+        return Err(Error::parse(name, format!("header line {}", vertex_element.line), format!("{} vertices declared: more than the 4294967295 a mesh can index", vertex_element.count)));
     }
     let format = match header.encoding {
         Encoding::Ascii => "ply ascii",
