@@ -102,16 +102,17 @@ pub fn orient_faces_outward(mesh: &mut Mesh) -> OrientationReport {
         let mut members = vec![seed as u32];
         queue.push_back(seed);
         while let Some(f) = queue.pop_front() {
-            let tri = mesh.triangles[f];
-            for (k, &edge) in topology.face_edges(f).iter().enumerate() {
+            for edge in topology.face_edges(f) {
                 if edge == super::topology::NO_EDGE {
                     continue;
                 }
                 let &[f0, f1] = topology.faces_of_edge(edge as usize) else { continue };
                 let g = if f0 as usize == f { f1 } else { f0 } as usize;
-                let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                let neighbour = mesh.triangles[g];
-                let same_direction = (0..3).any(|j| neighbour[j] == a && neighbour[(j + 1) % 3] == b);
+                // `f` may have been flipped since the topology was built: take the
+                // edge's direction from its corners as they are now.
+                let [u, v] = topology.edges()[edge as usize];
+                let (a, b) = if runs_from(&mesh.triangles[f], u, v) { (u, v) } else { (v, u) };
+                let same_direction = runs_from(&mesh.triangles[g], a, b);
                 if component[g] == u32::MAX {
                     if same_direction {
                         flip_face(mesh, g);
@@ -157,6 +158,11 @@ pub fn ensure_vertex_normals(mesh: &mut Mesh) {
         orient_faces_outward(mesh);
         mesh.normals = Some(compute_vertex_normals(mesh, NormalWeighting::Angle));
     }
+}
+
+/// True when triangle `tri` has the side `a -> b` (in its corner order).
+fn runs_from(tri: &[u32; 3], a: u32, b: u32) -> bool {
+    (0..3).any(|j| tri[j] == a && tri[(j + 1) % 3] == b)
 }
 
 fn flip_face(mesh: &mut Mesh, face: usize) {
