@@ -4,7 +4,7 @@
 use std::ffi::c_char;
 
 /// The version of the C ABI described by `sherd.h` (its `SHERD_ABI_VERSION` macro,
-/// written by `cbindgen.toml`; a test checks that both agree). It changes only when a function's
+/// written by `cbindgen.toml`; tests/c/test_mesh.c checks that both agree). It changes only when a function's
 /// signature or a struct's existing fields change; adding functions, constants or
 /// trailing struct fields (behind the `size` field) keeps it.
 pub const SHERD_ABI_VERSION: u32 = 1;
