@@ -67,3 +67,50 @@ fn info_on_the_real_scan_a011() {
     assert_eq!((info["has_colours"].as_bool(), info["has_normals"].as_bool()), (Some(true), Some(true)));
     assert_eq!(info["units_guess"]["unit"], "millimetres");
 }
+
+/// Counts a scan file declares or holds, found without sherd: the PLY header's element
+/// counts, or the non-empty lines of a text point cloud.
+fn independent_counts(path: &Path) -> (u64, u64) {
+    let bytes = std::fs::read(path).unwrap();
+    if path.extension().is_some_and(|e| e == "ply") {
+        let header_end = bytes.windows(10).position(|w| w == b"end_header").unwrap();
+        let header = String::from_utf8_lossy(&bytes[..header_end]);
+        let count = |element: &str| {
+            header.lines().find_map(|l| l.strip_prefix(&format!("element {element} "))).map_or(0, |n| n.trim().parse().unwrap())
+        };
+        (count("vertex"), count("face"))
+    } else {
+        (String::from_utf8_lossy(&bytes).lines().filter(|l| !l.trim().is_empty()).count() as u64, 0)
+    }
+}
+
+#[test]
+fn info_on_every_scan_of_the_shared_data() {
+    let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data");
+    if !data.exists() {
+        println!("SKIPPED: {} is absent", data.display());
+        return;
+    }
+    let mut folders = vec![data];
+    let mut scans = 0;
+    while let Some(folder) = folders.pop() {
+        for entry in std::fs::read_dir(folder).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                folders.push(path);
+                continue;
+            }
+            if !path.extension().is_some_and(|e| e == "ply" || e == "xyz") {
+                continue;
+            }
+            let info = info_json(&path);
+            let (vertices, faces) = independent_counts(&path);
+            assert_eq!(info["vertex_count"].as_u64(), Some(vertices), "{}", path.display());
+            // Every face of these files is a triangle.
+            assert_eq!(info["face_count"].as_u64(), Some(faces), "{}", path.display());
+            assert_eq!(info["point_cloud"].as_bool(), Some(faces == 0), "{}", path.display());
+            scans += 1;
+        }
+    }
+    assert!(scans >= 10, "only {scans} scans found");
+}
