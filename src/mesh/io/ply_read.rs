@@ -1015,4 +1015,26 @@ mod tests {
         let message = parse(short).unwrap_err().to_string();
         assert!(message.contains("line 8") && message.contains("vertex 0 of 2") && message.contains("line ends"), "{message}");
     }
+
+    #[test]
+    fn crlf_ascii_files_read_like_lf_ones() {
+        let lf = b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+        let crlf: Vec<u8> = lf.iter().flat_map(|&b| if b == b'\n' { vec![b'\r', b'\n'] } else { vec![b] }).collect();
+        assert_eq!(parse(lf).unwrap().0, parse(&crlf).unwrap().0);
+    }
+
+    #[test]
+    fn binary_index_error_points_at_the_offending_index() {
+        let mut bytes = b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 2\nproperty list uchar uint vertex_indices\nend_header\n".to_vec();
+        let body_start = bytes.len();
+        bytes.extend([0u8; 36]);
+        for face in [[0u32, 1, 2], [2, 1, 9]] {
+            bytes.push(3);
+            face.iter().for_each(|i| bytes.extend(i.to_le_bytes()));
+        }
+        let message = parse(&bytes).unwrap_err().to_string();
+        // Vertices, the first face (13 bytes), the count and two indices of the second.
+        let offset = body_start + 36 + 13 + 1 + 8;
+        assert!(message.contains(&format!("byte {offset} (face 1 of 2, property vertex_indices)")) && message.contains("vertex index 9"), "{message}");
+    }
 }
