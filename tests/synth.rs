@@ -289,3 +289,31 @@ fn a_broken_vessel_is_its_fragments() {
     let parts: Vec<SherdPart> = vessel.fragments.iter().map(|f| f.truth.part).collect();
     assert!(parts.contains(&SherdPart::Rim), "{parts:?}");
 }
+
+#[test]
+fn break_faces_do_not_follow_the_grid() {
+    // On a staircase break every fracture face would face along the circumference
+    // (|n . e_theta| = 1) or lie in a meridian plane (n . e_theta = 0); smoothed breaks
+    // take every direction in between.
+    let options = SherdOptions { target_faces: 20_000, random_motion: false, sector_deg: [40.0, 60.0], ..SherdOptions::for_part(SherdPart::Body).ideal() };
+    let sherd = synthetic_sherd(21, &options);
+    let mesh = &sherd.mesh;
+    let (mut oblique, mut total) = (0usize, 0usize);
+    for face in 0..mesh.face_count() {
+        if sherd.face_kinds[face] != SurfaceKind::Fracture {
+            continue;
+        }
+        let [a, b, c] = mesh.triangle_points(face);
+        let centre = (a.coords + b.coords + c.coords) / 3.0;
+        let around = nalgebra::Vector3::new(-centre.y, centre.x, 0.0).normalize();
+        let normal = mesh.face_normal_scaled(face).normalize();
+        let along = normal.dot(&around).abs();
+        total += 1;
+        if (0.1..0.95).contains(&along) {
+            oblique += 1;
+        }
+    }
+    let fraction = oblique as f64 / total as f64;
+    println!("{oblique} of {total} fracture faces oblique");
+    assert!(fraction > 0.3, "only {oblique} of {total} fracture faces are oblique to the grid");
+}

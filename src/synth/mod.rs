@@ -252,6 +252,9 @@ struct FragmentPlan {
     seeds: Vec<Point>,
     theta: f64,
     s_mm: f64,
+    /// The neighbours' angular and arc-length extent: the fragment lies inside.
+    theta_extent: [f64; 2],
+    s_extent: [f64; 2],
 }
 
 /// Seeds whose Voronoi cell is a fragment of `part`: the fragment's seed in the middle of
@@ -301,6 +304,7 @@ fn plan_fragment(profile: &VesselProfile, part: SherdPart, options: &SherdOption
     let half_width = 0.5 * sector_rad * centre_radius;
     let half_height = 0.5 * (s_high - s_low);
     let mut seeds = vec![mid_surface_point(profile, 0.0, centre_s)];
+    let (mut theta_extent, mut s_extent) = ([0.0f64, 0.0f64], [centre_s, if open_top { length } else { centre_s }]);
     let neighbour_count = rng.random_range(6..=9);
     for k in 0..neighbour_count {
         let jitter = uniform(rng, -0.3, 0.3) * std::f64::consts::PI / neighbour_count as f64;
@@ -311,9 +315,11 @@ fn plan_fragment(profile: &VesselProfile, part: SherdPart, options: &SherdOption
         if open_top && s >= length {
             continue;
         }
+        theta_extent = [theta_extent[0].min(theta), theta_extent[1].max(theta)];
+        s_extent = [s_extent[0].min(s), s_extent[1].max(s)];
         seeds.push(mid_surface_point(profile, theta, s));
     }
-    Some(FragmentPlan { seeds, theta: 0.0, s_mm: centre_s })
+    Some(FragmentPlan { seeds, theta: 0.0, s_mm: centre_s, theta_extent, s_extent })
 }
 
 /// The fragment of seed 0 of `voronoi`: found on a coarse grid of the whole vessel, then
@@ -322,11 +328,22 @@ fn mesh_planned_fragment(profile: &VesselProfile, deformation: &Deformation, vor
     let length = profile.length_mm();
     let (area, parameter_area) = surface_areas(profile);
     let coarse_cell = (area / 100_000.0).sqrt().max(1.0);
-    let coarse = ParamGrid::covering(None, [0.0, length], length, coarse_cell, area / parameter_area);
-    let mut mask: Vec<bool> = voronoi.label_grid(&coarse, profile).iter().map(|&l| l == 0).collect();
-    if !clean_mask(&coarse, &mut mask, cell_at(&coarse, plan.theta, plan.s_mm)) {
-        return None;
+    // The fragment lies within its neighbours' ring; the whole vessel is the fallback
+    // when the rough break lines carry it out of the ring's window.
+    let windowed = ParamGrid::covering(Some(plan.theta_extent), plan.s_extent, length, coarse_cell, area / parameter_area);
+    let whole = ParamGrid::covering(None, [0.0, length], length, coarse_cell, area / parameter_area);
+    let mut found = None;
+    for coarse in [windowed, whole] {
+        let mut mask: Vec<bool> = voronoi.label_grid(&coarse, profile).iter().map(|&l| l == 0).collect();
+        if !clean_mask(&coarse, &mut mask, cell_at(&coarse, plan.theta, plan.s_mm)) {
+            return None;
+        }
+        if !touches_window_border(&coarse, &mask) {
+            found = Some((coarse, mask));
+            break;
+        }
     }
+    let (coarse, mask) = found?;
     let extent = CellSetExtent::measure(&coarse, &mask, profile);
 
     // Faces ~ 4 per cell + 2 per boundary edge: 4 A / h^2 + 2 P / h = target, solved for 1/h.
@@ -343,13 +360,19 @@ fn mesh_planned_fragment(profile: &VesselProfile, deformation: &Deformation, vor
     if !clean_mask(&fine, &mut mask, cell_at(&fine, plan.theta, plan.s_mm)) {
         return None;
     }
-    if !fine.periodic {
-        let touches_side = (0..fine.rows).any(|row| mask[row * fine.columns] || mask[row * fine.columns + fine.columns - 1]);
-        if touches_side {
-            return None;
-        }
+    if touches_window_border(&fine, &mask) {
+        return None;
     }
     Some(build_shell(&fine, &mask, profile, deformation))
+}
+
+/// True when a cell of `mask` lies on a side of the window that is not the vessel's own
+/// edge (base centre or rim): the fragment may continue beyond the window.
+fn touches_window_border(grid: &ParamGrid, mask: &[bool]) -> bool {
+    let sides = !grid.periodic && (0..grid.rows).any(|row| mask[row * grid.columns] || mask[row * grid.columns + grid.columns - 1]);
+    let bottom = !grid.pole && grid.s0 > 0.0 && mask[..grid.columns].iter().any(|&m| m);
+    let top = !grid.rim && mask[(grid.rows - 1) * grid.columns..].iter().any(|&m| m);
+    sides || bottom || top
 }
 
 /// Area, outline and angular and arc-length extent of a set of cells.
