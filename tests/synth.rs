@@ -317,3 +317,21 @@ fn break_faces_do_not_follow_the_grid() {
     println!("{oblique} of {total} fracture faces oblique");
     assert!(fraction > 0.3, "only {oblique} of {total} fracture faces are oblique to the grid");
 }
+
+#[test]
+fn written_sherd_reads_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let sherd = synthetic_sherd(11, &SherdOptions { target_faces: 3_000, ..SherdOptions::for_part(SherdPart::Base) });
+    let path = sherd::synth::write_sherd(dir.path(), &sherd).unwrap();
+    assert_eq!(path, dir.path().join("sherd_11_base.ply"));
+    let mesh = sherd::mesh::io::read_mesh(&path).unwrap();
+    assert_eq!(mesh.triangles, sherd.mesh.triangles);
+    assert!(mesh.normals.is_some() && mesh.colors.is_some());
+    let truth = sherd::synth::read_truth(&dir.path().join("sherd_11_base.truth.json")).unwrap();
+    assert_eq!(truth.base_radius_mm, sherd.truth.base_radius_mm);
+    assert_eq!(truth.part, SherdPart::Base);
+    let broken = dir.path().join("broken.truth.json");
+    std::fs::write(&broken, "{\"axis\": 3}").unwrap();
+    let message = sherd::synth::read_truth(&broken).unwrap_err().to_string();
+    assert!(message.contains("broken.truth.json") && message.contains("line 1"), "{message}");
+}

@@ -10,12 +10,14 @@
 //! Every fragment is a closed, watertight, outward-oriented triangle mesh with
 //! area-weighted vertex normals, and the same seed always gives the same bytes.
 
+pub mod colour;
 pub mod deform;
 pub mod fracture;
 pub mod motion;
 pub mod profile;
 pub mod revolve;
 pub mod truth;
+pub mod write;
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -24,9 +26,12 @@ use rayon::prelude::*;
 pub use deform::Deformation;
 pub use profile::{VesselProfile, VesselShape};
 pub use truth::{GroundTruth, HardCase, RigidMotion, SherdPart, SurfaceKind, VesselTruth};
+pub use write::{read_truth, write_sherd};
 
+use crate::mesh::normals::{compute_vertex_normals, NormalWeighting};
 use crate::mesh::{Mesh, Point, Vector};
 use crate::orient::Axis;
+use colour::ClayColour;
 use fracture::{clean_mask, mid_surface_point, RoughVoronoi};
 use revolve::{build_shell, ParamGrid, Shell};
 
@@ -55,6 +60,8 @@ pub struct SherdOptions {
     /// Make one of the fragments orientation must refuse (overrides `part` and, for
     /// near-spherical pieces, `shape`).
     pub hard_case: Option<HardCase>,
+    /// Give the vertices fired-clay colours.
+    pub colours: bool,
 }
 
 impl Default for SherdOptions {
@@ -69,6 +76,7 @@ impl Default for SherdOptions {
             roughness_mm: 1.5,
             random_motion: true,
             hard_case: None,
+            colours: true,
         }
     }
 }
@@ -121,6 +129,8 @@ pub struct VesselOptions {
     /// Move each fragment by its own random rigid motion; otherwise they stay in the
     /// vessel frame and fit together.
     pub random_motion: bool,
+    /// Give the vertices fired-clay colours.
+    pub colours: bool,
 }
 
 impl Default for VesselOptions {
@@ -133,6 +143,7 @@ impl Default for VesselOptions {
             deformation_scale: 1.0,
             roughness_mm: 1.5,
             random_motion: false,
+            colours: true,
         }
     }
 }
@@ -180,17 +191,23 @@ pub fn synthetic_sherd(seed: u64, options: &SherdOptions) -> SynthSherd {
             continue;
         };
         let part = classify(&profile, &shell);
-        let noise_seed = rng.random::<u64>();
-        let motion_seed = rng.random::<u64>();
+        let surface = Surface {
+            noise_mm: options.noise_mm,
+            noise_seed: rng.random(),
+            motion_seed: options.random_motion.then(|| rng.random()),
+            colour: options.colours.then(|| ClayColour::random(&mut rng)),
+            hard_case: options.hard_case,
+            fragment_index: None,
+        };
         if part == wanted_part || attempt + 1 == MAX_ATTEMPTS {
-            return finish(seed, shell, &profile, &deformation, part, options.hard_case, options.noise_mm, noise_seed, options.random_motion.then_some(motion_seed));
+            return finish(seed, shell, &profile, &deformation, part, &surface);
         }
-        fallback.get_or_insert((shell, profile, deformation, part, noise_seed, motion_seed));
+        fallback.get_or_insert((shell, profile, deformation, part, surface));
     }
     // Only reached when no attempt gave the wanted part: the truth says what it is.
-    let (shell, profile, deformation, part, noise_seed, motion_seed) =
+    let (shell, profile, deformation, part, surface) =
         fallback.expect("some attempt yields a fragment: every plan contains its own seed");
-    finish(seed, shell, &profile, &deformation, part, options.hard_case, options.noise_mm, noise_seed, options.random_motion.then_some(motion_seed))
+    finish(seed, shell, &profile, &deformation, part, &surface)
 }
 
 /// A whole vessel broken into `options.fragment_count` fragments by a rough Voronoi
@@ -215,6 +232,7 @@ pub fn generate_vessel(seed: u64, options: &VesselOptions) -> SynthVessel {
     let (area, parameter_area) = surface_areas(&profile);
     let grid = ParamGrid::covering(None, [0.0, length], length, options.cell_size_mm.max(0.05), area / parameter_area);
     let labels = voronoi.label_grid(&grid, &profile);
+    let colour = options.colours.then(|| ClayColour::random(&mut rng));
     let fragment_seeds: Vec<(u64, u64)> = seed_params.iter().map(|_| (rng.random(), rng.random())).collect();
     let fragments = seed_params
         .par_iter()
@@ -227,7 +245,15 @@ pub fn generate_vessel(seed: u64, options: &VesselOptions) -> SynthVessel {
             let shell = build_shell(&grid, &mask, &profile, &deformation);
             let part = classify(&profile, &shell);
             let (noise_seed, motion_seed) = fragment_seeds[k];
-            Some(finish(seed, shell, &profile, &deformation, part, None, options.noise_mm, noise_seed, options.random_motion.then_some(motion_seed)))
+            let surface = Surface {
+                noise_mm: options.noise_mm,
+                noise_seed,
+                motion_seed: options.random_motion.then_some(motion_seed),
+                colour: colour.clone(),
+                hard_case: None,
+                fragment_index: Some(k),
+            };
+            Some(finish(seed, shell, &profile, &deformation, part, &surface))
         })
         .collect();
     SynthVessel {
@@ -489,23 +515,26 @@ fn vessel_truth(profile: &VesselProfile, deformation: &Deformation) -> VesselTru
     }
 }
 
-/// Noise, motion, normals and truth for a shell.
-#[allow(clippy::too_many_arguments)]
-fn finish(
-    seed: u64,
-    shell: Shell,
-    profile: &VesselProfile,
-    deformation: &Deformation,
-    part: SherdPart,
-    hard_case: Option<HardCase>,
+/// What happens to a shell after it is built: colour, noise, motion.
+struct Surface {
     noise_mm: f64,
     noise_seed: u64,
+    /// `None`: stay in the vessel frame.
     motion_seed: Option<u64>,
-) -> SynthSherd {
+    colour: Option<ClayColour>,
+    hard_case: Option<HardCase>,
+    fragment_index: Option<usize>,
+}
+
+/// Colours, noise, motion, normals and truth for a shell.
+fn finish(seed: u64, shell: Shell, profile: &VesselProfile, deformation: &Deformation, part: SherdPart, surface: &Surface) -> SynthSherd {
     let Shell { positions, triangles, vertex_kinds, face_kinds, .. } = shell;
     let mut mesh = Mesh::new(positions, triangles);
-    motion::add_noise(&mut mesh.positions, noise_mm, noise_seed);
-    let isometry = match motion_seed {
+    if let Some(colour) = &surface.colour {
+        mesh.colors = Some(mesh.positions.par_iter().zip(&vertex_kinds).map(|(p, kind)| colour.at(p, *kind)).collect());
+    }
+    motion::add_noise(&mut mesh.positions, surface.noise_mm, surface.noise_seed);
+    let isometry = match surface.motion_seed {
         Some(motion_seed) => {
             let centroid = mesh.centroid().unwrap_or_else(Point::origin);
             motion::random_motion(&mut ChaCha8Rng::seed_from_u64(motion_seed), &centroid, 30.0)
@@ -513,7 +542,7 @@ fn finish(
         None => nalgebra::Isometry3::identity(),
     };
     mesh.transform(&isometry);
-    mesh.normals = Some(motion::area_weighted_normals(&mesh));
+    mesh.normals = Some(compute_vertex_normals(&mesh, NormalWeighting::Area));
     let axis = Axis::new(isometry * Point::origin(), isometry * Vector::z());
     let heights = mesh.positions.iter().map(|p| axis.height_of(p));
     let (low, high) = heights.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), h| (lo.min(h), hi.max(h)));
@@ -526,8 +555,9 @@ fn finish(
         profile: profile.skin_polyline(1.0, PROFILE_STEP_MM),
         inner_profile: profile.skin_polyline(-1.0, PROFILE_STEP_MM),
         part,
-        hard_case,
-        noise_mm,
+        hard_case: surface.hard_case,
+        noise_mm: surface.noise_mm,
+        fragment_index: surface.fragment_index,
         deformation_bound_mm: deformation.bound_mm(profile.max_radius_mm()),
         vessel: vessel_truth(profile, deformation),
         motion: RigidMotion::from_isometry(&isometry),
