@@ -5,14 +5,14 @@
 //!
 //! Skips when pymeshlab is missing, unless SHERD_REQUIRE_PYMESHLAB=1 (then fails).
 
+mod support;
 #[path = "support/decimation_vessel.rs"]
 mod vessel;
 
-use std::io::Write;
-use std::path::Path;
 use std::process::Command;
 
 use sherd::mesh::decimate::{decimate_with_options, DecimateOptions};
+use sherd::mesh::io::{read_mesh, write_ply, PlyEncoding};
 use sherd::mesh::Mesh;
 
 /// Decimates the input with MeshLab at MeshLab's boundary-, topology- and
@@ -35,35 +35,6 @@ def both_ways(decimated):
 print(json.dumps({"meshlab": both_ways(1), "ours": both_ways(2)}))
 "#;
 
-fn pymeshlab_available() -> bool {
-    let found = Command::new("python3").args(["-c", "import pymeshlab"]).output().is_ok_and(|o| o.status.success());
-    if !found {
-        if std::env::var("SHERD_REQUIRE_PYMESHLAB").is_ok_and(|v| v == "1") {
-            panic!("pymeshlab is required (SHERD_REQUIRE_PYMESHLAB=1) but `import pymeshlab` fails");
-        }
-        eprintln!("SKIPPED: pymeshlab is not installed (pip install pymeshlab)");
-    }
-    found
-}
-
-/// A binary little-endian PLY with double positions: enough for pymeshlab to read.
-fn write_test_ply(path: &Path, mesh: &Mesh) {
-    let mut bytes = format!(
-        "ply\nformat binary_little_endian 1.0\nelement vertex {}\nproperty double x\nproperty double y\nproperty double z\nelement face {}\nproperty list uchar int vertex_indices\nend_header\n",
-        mesh.vertex_count(),
-        mesh.face_count()
-    )
-    .into_bytes();
-    for p in &mesh.positions {
-        p.coords.iter().for_each(|c| bytes.extend(c.to_le_bytes()));
-    }
-    for triangle in &mesh.triangles {
-        bytes.push(3);
-        triangle.iter().for_each(|&v| bytes.extend((v as i32).to_le_bytes()));
-    }
-    std::fs::File::create(path).and_then(|mut f| f.write_all(&bytes)).unwrap();
-}
-
 #[derive(Debug)]
 struct Distances {
     max: f64,
@@ -81,8 +52,8 @@ fn compare_with_meshlab(name: &str, input: &Mesh, target_faces: usize) {
     let directory = tempfile::tempdir().unwrap();
     let (original_path, ours_path) = (directory.path().join("original.ply"), directory.path().join("ours.ply"));
     let (ours, report) = decimate_with_options(input, &DecimateOptions::with_target_faces(target_faces)).unwrap();
-    write_test_ply(&original_path, input);
-    write_test_ply(&ours_path, &ours);
+    write_ply(&original_path, input, PlyEncoding::BinaryLittleEndian).unwrap();
+    write_ply(&ours_path, &ours, PlyEncoding::BinaryLittleEndian).unwrap();
     let output = Command::new("python3")
         .args(["-c", MESHLAB_SCRIPT])
         .arg(&original_path)
@@ -101,8 +72,23 @@ fn compare_with_meshlab(name: &str, input: &Mesh, target_faces: usize) {
 
 #[test]
 fn noisy_vessel_as_close_as_meshlab() {
-    if !pymeshlab_available() {
+    if !support::pymeshlab_available("noisy_vessel_as_close_as_meshlab") {
         return;
     }
     compare_with_meshlab("noisy vessel", &vessel::noisy_vessel(100_000, 0.2, 7), 10_000);
+}
+
+#[test]
+fn real_scan_as_close_as_meshlab() {
+    let path = support::repo_root().join("../shared/data/dacord/A011.ply");
+    if !path.exists() {
+        eprintln!("SKIPPED real_scan_as_close_as_meshlab: {} is absent", path.display());
+        return;
+    }
+    if !support::pymeshlab_available("real_scan_as_close_as_meshlab") {
+        return;
+    }
+    let scan = read_mesh(&path).unwrap();
+    // 68.6k faces to 10k: the ~5k vertices of the orientation's working copy.
+    compare_with_meshlab("A011", &scan, 10_000);
 }
