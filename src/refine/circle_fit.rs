@@ -129,22 +129,28 @@ pub fn fit_kasa(points: &[[f64; 2]]) -> Option<Circle> {
     (circle.center.iter().all(|c| c.is_finite()) && radius.is_finite()).then_some(circle)
 }
 
+/// The coefficients shared by the Taubin and Pratt characteristic polynomials:
+/// `(Mz, Cov_xy, a1, a0)` in Chernov's notation.
+fn shared_coefficients(m: &Moments) -> (f64, f64, f64, f64) {
+    let mz = m.xx + m.yy;
+    let covariance = m.xx * m.yy - m.xy * m.xy;
+    let variance_z = m.zz - mz * mz;
+    let a1 = variance_z * mz + 4.0 * covariance * mz - m.xz * m.xz - m.yz * m.yz;
+    let a0 = m.xz * (m.xz * m.yy - m.yz * m.xy) + m.yz * (m.yz * m.xx - m.xz * m.xy) - variance_z * covariance;
+    (mz, covariance, a1, a0)
+}
+
 /// Taubin's fit by Newton's method on its cubic characteristic polynomial (Chernov 2010, 5.10).
 pub fn fit_taubin(points: &[[f64; 2]]) -> Option<Circle> {
     if points.len() < 3 {
         return None;
     }
     let m = Moments::of(points);
-    let mz = m.xx + m.yy;
-    let covariance = m.xx * m.yy - m.xy * m.xy;
-    let variance_z = m.zz - mz * mz;
+    let (mz, _, a1, a0) = shared_coefficients(&m);
     let a3 = 4.0 * mz;
     let a2 = -3.0 * mz * mz - m.zz;
-    let a1 = variance_z * mz + 4.0 * covariance * mz - m.xz * m.xz - m.yz * m.yz;
-    let a0 = m.xz * (m.xz * m.yy - m.yz * m.xy) + m.yz * (m.yz * m.xx - m.xz * m.xy) - variance_z * covariance;
     let polynomial = |x: f64| (a0 + x * (a1 + x * (a2 + x * a3)), a1 + x * (2.0 * a2 + 3.0 * a3 * x));
-    let eta = Moments::newton_root(polynomial, a0);
-    m.circle_for_root(eta)
+    m.circle_for_root(Moments::newton_root(polynomial, a0))
 }
 
 /// Pratt's fit by Newton's method on its quartic characteristic polynomial (Chernov 2010, 5.8).
@@ -153,25 +159,14 @@ pub fn fit_pratt(points: &[[f64; 2]]) -> Option<Circle> {
         return None;
     }
     let m = Moments::of(points);
-    let mz = m.xx + m.yy;
-    let covariance = m.xx * m.yy - m.xy * m.xy;
-    let variance_z = m.zz - mz * mz;
+    let (mz, covariance, a1, a0) = shared_coefficients(&m);
     let a2 = 4.0 * covariance - 3.0 * mz * mz - m.zz;
-    let a1 = variance_z * mz + 4.0 * covariance * mz - m.xz * m.xz - m.yz * m.yz;
-    let a0 = m.xz * (m.xz * m.yy - m.yz * m.xy) + m.yz * (m.yz * m.xx - m.xz * m.xy) - variance_z * covariance;
     let polynomial = |x: f64| (a0 + x * (a1 + x * (a2 + 4.0 * x * x)), a1 + x * (2.0 * a2 + 16.0 * x * x));
-    let eta = Moments::newton_root(polynomial, a0);
-    let covariance_term = eta * eta - eta * mz + covariance;
-    if covariance_term.abs() < 1e-300 {
-        return None;
-    }
-    let cx = (m.xz * (m.yy - eta) - m.yz * m.xy) / covariance_term / 2.0;
-    let cy = (m.yz * (m.xx - eta) - m.xz * m.xy) / covariance_term / 2.0;
-    let center = [cx + m.mean[0], cy + m.mean[1]];
+    let center = m.circle_for_root(Moments::newton_root(polynomial, a0))?.center;
     // Pratt's radius follows from its constraint; the mean distance to the centre is
     // the same for exact data and more robust when the root is poorly conditioned.
     let radius = points.iter().map(|p| (p[0] - center[0]).hypot(p[1] - center[1])).sum::<f64>() / points.len() as f64;
-    (center.iter().all(|c| c.is_finite()) && radius.is_finite()).then_some(Circle { center, radius_mm: radius })
+    radius.is_finite().then_some(Circle { center, radius_mm: radius })
 }
 
 /// The geometric (orthogonal distance) fit by Levenberg-Marquardt from `start`.
