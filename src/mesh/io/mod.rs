@@ -1,1 +1,146 @@
-//! Scan readers and writers (PLY, OBJ+MTL+texture, STL, XYZ), all producing one [`crate::mesh::Mesh`].
+//! Scan readers and writers (PLY, OBJ+MTL+texture, STL, XYZ/PTS), all producing one
+//! [`crate::mesh::Mesh`].
+//!
+//! Every reader refuses broken input with an [`Error::Parse`] naming the file, where it
+//! went wrong (header line, body line for text formats, byte offset for binary ones), the
+//! element and the offending value, and never allocates more than the file can hold: a
+//! header that declares 10^12 vertices in a 2 kB file is refused before any allocation.
+//! What was read but not kept (unknown elements, a missing texture, degenerate polygons)
+//! is listed in the [`ReadReport`].
+
+mod obj;
+mod ply_read;
+mod ply_write;
+mod points;
+mod stl;
+mod texture;
+mod units;
+
+use std::path::Path;
+
+use serde::Serialize;
+
+use crate::mesh::Mesh;
+use crate::{Error, Result};
+
+pub use ply_read::{read_ply_from, read_ply_from_with_report};
+pub use ply_write::{PlyEncoding, write_ply, write_ply_to};
+pub use units::{LengthUnit, UnitsGuess, guess_units};
+
+/// What a reader did besides producing the mesh: the format it recognised and the
+/// warnings about what it skipped or could not load.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct ReadReport {
+    /// The format as recognised, e.g. `"ply binary_little_endian"`, `"stl ascii"`, `"obj"`.
+    pub format: String,
+    /// Polygons with more than three corners that were split into triangles (fan).
+    pub polygons_triangulated: usize,
+    /// Faces with fewer than three distinct corners that were dropped.
+    pub degenerate_faces_dropped: usize,
+    /// Human-readable warnings: skipped elements and properties, missing texture...
+    pub warnings: Vec<String>,
+}
+
+impl ReadReport {
+    fn new(format: impl Into<String>) -> Self {
+        ReadReport { format: format.into(), ..Default::default() }
+    }
+
+    fn warn(&mut self, message: impl Into<String>) {
+        self.warnings.push(message.into());
+    }
+}
+
+/// Reads a mesh or point cloud, choosing the reader by extension (`.ply`, `.obj`, `.stl`,
+/// `.xyz`, `.pts`; case-insensitive). See [`read_mesh_with_report`] for the warnings.
+pub fn read_mesh(path: &Path) -> Result<Mesh> {
+    read_mesh_with_report(path).map(|(mesh, _)| mesh)
+}
+
+/// Reads a mesh or point cloud by extension and says what was skipped or could not be
+/// loaded (unknown PLY elements, a texture named by the MTL file but absent...).
+pub fn read_mesh_with_report(path: &Path) -> Result<(Mesh, ReadReport)> {
+    let name = path.display().to_string();
+    let extension = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase())
+        .unwrap_or_default();
+    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    if bytes.is_empty() {
+        return Err(Error::parse(name, "byte 0", "the file is empty"));
+    }
+    if let Some(kind) = foreign_signature(&bytes) {
+        if !(extension == "png" || extension == "jpg" || extension == "jpeg") {
+            return Err(Error::parse(
+                name,
+                "byte 0",
+                format!("this is a {kind}, not a mesh (the extension says .{extension})"),
+            ));
+        }
+    }
+    let folder = path.parent();
+    let (mesh, report) = match extension.as_str() {
+        "ply" => ply_read::parse_ply(&bytes, &name, folder)?,
+        "obj" => obj::parse_obj(&bytes, &name, folder)?,
+        "stl" => stl::parse_stl(&bytes, &name)?,
+        "xyz" | "pts" | "txt" | "asc" => points::parse_points(&bytes, &name)?,
+        _ => {
+            return Err(Error::parse(
+                name,
+                "file name",
+                format!(
+                    "unsupported extension {:?}: sherd reads .ply, .obj, .stl, .xyz and .pts",
+                    extension
+                ),
+            ));
+        }
+    };
+    Ok((mesh, report))
+}
+
+/// Recognises files that are certainly not meshes (images, archives, PDF) by their first
+/// bytes, so that "a PNG where a PLY should be" gets a message saying so.
+fn foreign_signature(bytes: &[u8]) -> Option<&'static str> {
+    const SIGNATURES: [(&[u8], &str); 6] = [
+        (b"\x89PNG\r\n\x1a\n", "PNG image"),
+        (b"\xff\xd8\xff", "JPEG image"),
+        (b"PK\x03\x04", "ZIP archive"),
+        (b"%PDF", "PDF document"),
+        (b"\x1f\x8b", "gzip-compressed file"),
+        (b"GIF8", "GIF image"),
+    ];
+    SIGNATURES.iter().find(|(magic, _)| bytes.starts_with(magic)).map(|(_, kind)| *kind)
+}
+
+/// Splits a polygon into a fan of triangles `(0, i, i+1)`, the triangulation MeshLab and
+/// Blender apply to the convex polygons scanners write. Returns the corner positions
+/// (indices into `corners`) of each triangle.
+fn fan_triangles(corner_count: usize) -> impl Iterator<Item = [usize; 3]> {
+    (1..corner_count.saturating_sub(1)).map(|i| [0, i, i + 1])
+}
+
+/// Shows a token of a text file in a message, escaping what is not printable and
+/// shortening what is long, so that a binary file read as text gives a readable error.
+fn show_token(token: &[u8]) -> String {
+    let shown: String = String::from_utf8_lossy(&token[..token.len().min(40)]).escape_debug().collect();
+    if token.len() > 40 { format!("\"{shown}...\"") } else { format!("\"{shown}\"") }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fan_of_a_pentagon_has_three_triangles_sharing_the_first_corner() {
+        let triangles: Vec<_> = fan_triangles(5).collect();
+        assert_eq!(triangles, vec![[0, 1, 2], [0, 2, 3], [0, 3, 4]]);
+        assert_eq!(fan_triangles(2).count(), 0);
+        assert_eq!(fan_triangles(0).count(), 0);
+    }
+
+    #[test]
+    fn foreign_files_are_named() {
+        assert_eq!(foreign_signature(b"\x89PNG\r\n\x1a\nrest"), Some("PNG image"));
+        assert_eq!(foreign_signature(b"ply\nformat ascii 1.0\n"), None);
+    }
+}
