@@ -18,6 +18,7 @@ pub mod pareto;
 pub mod profile;
 pub mod sections;
 pub mod tangent;
+pub mod uncertainty;
 
 use std::time::Instant;
 
@@ -195,7 +196,7 @@ pub fn refine(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Result<Refin
     let mut pareto_chosen = None;
     let (parameters, start_cost, cost, iterations, kept_start) = match method {
         Criterion::Circles | Criterion::Auto => {
-            let objective = circles::CirclesObjective { surface: &surface };
+            let objective = circles::CirclesObjective::new(&surface);
             run_guarded(&objective, start, &settings)?
         }
         Criterion::Profile => {
@@ -211,7 +212,7 @@ pub fn refine(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Result<Refin
             } else {
                 run_guarded(&tangent, start, &tilts)?
             };
-            let circles = circles::CirclesObjective { surface: &surface };
+            let circles = circles::CirclesObjective::new(&surface);
             let shifts = SearchSettings { free: FreeParameters::ShiftsOnly, ..settings };
             let placed = minimize(&circles, tilted, &shifts)?;
             (placed.parameters, tangent_start, tangent_cost, tangent_iterations + placed.iterations, tangent_kept)
@@ -288,7 +289,7 @@ fn run_guarded<O: Objective>(
 }
 
 /// The criterion to run, why, and the edge for the tangent criterion.
-fn choose_criterion(surface: &PreparedSurface, options: &RefineOptions) -> (Criterion, String, Option<Edge>) {
+pub(crate) fn choose_criterion(surface: &PreparedSurface, options: &RefineOptions) -> (Criterion, String, Option<Edge>) {
     let detect = || {
         [Edge::Rim, Edge::Base]
             .into_iter()

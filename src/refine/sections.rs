@@ -169,6 +169,102 @@ fn vertex_normals(mesh: &Mesh) -> Result<Vec<Vector>> {
     Ok(normals.into_iter().map(|n| n.try_normalize(1e-300).unwrap_or_else(Vector::zeros)).collect())
 }
 
+/// The skin of one vertex from its normal alone (the paper's test, section 2.2.1): outer
+/// when the normal points away from the axis, inner when towards it; `None` when the
+/// normal is closer to horizontal-tangential or vertical than the limits allow.
+fn skin_by_normal(p: &Point, n: &Vector) -> Option<Skin> {
+    let radial = Vector2::new(p.x, p.y).try_normalize(1e-9)?;
+    let radial_component = n.x * radial.x + n.y * radial.y;
+    let tangential_component = -n.x * radial.y + n.y * radial.x;
+    if tangential_component.abs() > MAX_TANGENTIAL_NORMAL || radial_component.abs() < MIN_RADIAL_NORMAL {
+        return None;
+    }
+    Some(if radial_component > 0.0 { Skin::Outer } else { Skin::Inner })
+}
+
+/// Adjacent faces whose normals differ by less than this belong to one smooth region.
+const SMOOTH_REGION_ANGLE_DEG: f64 = 35.0;
+/// A smooth region is a skin when its area is at least this share of the largest region's.
+const MIN_SKIN_REGION_SHARE: f64 = 0.1;
+
+/// Skins of a mesh (vertices in the start frame): the mesh is cut into smooth regions
+/// along sharp edges (the fracture faces and a flat lip meet the skins at about 90
+/// degrees), the large regions are skins, and each skin region is inner or outer by the
+/// area-weighted majority of its normals. Testing each vertex's normal alone, as the
+/// paper does, takes the break faces of a sloping wall for skin (their normals run along
+/// the meridian, towards or away from the axis) and the inside of an everted lip for
+/// outer skin; a region keeps the side of its majority.
+fn skins_by_smooth_regions(mesh: &Mesh, points: &[Point]) -> Vec<Option<Skin>> {
+    let face_normals: Vec<Vector> = mesh
+        .triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| points[v as usize]);
+            (b - a).cross(&(c - a))
+        })
+        .collect();
+    let mut parent: Vec<usize> = (0..mesh.triangles.len()).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    let cosine_limit = SMOOTH_REGION_ANGLE_DEG.to_radians().cos();
+    let mut edges: std::collections::HashMap<(u32, u32), usize> = std::collections::HashMap::with_capacity(mesh.triangles.len() * 2);
+    for (face, t) in mesh.triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let key = (a.min(b), a.max(b));
+            if let Some(&other) = edges.get(&key) {
+                let (n, m) = (face_normals[face], face_normals[other]);
+                let norms = n.norm() * m.norm();
+                if norms > 0.0 && n.dot(&m) >= cosine_limit * norms {
+                    let (ra, rb) = (root(&mut parent, face), root(&mut parent, other));
+                    parent[ra] = rb;
+                }
+            } else {
+                edges.insert(key, face);
+            }
+        }
+    }
+    let mut region_area = std::collections::HashMap::<usize, f64>::new();
+    let mut region_radial = std::collections::HashMap::<usize, f64>::new();
+    let roots: Vec<usize> = (0..mesh.triangles.len()).map(|f| root(&mut parent, f)).collect();
+    for (face, t) in mesh.triangles.iter().enumerate() {
+        let n = face_normals[face];
+        let centre = (points[t[0] as usize].coords + points[t[1] as usize].coords + points[t[2] as usize].coords) / 3.0;
+        let radial = Vector2::new(centre.x, centre.y).try_normalize(1e-9).unwrap_or_else(Vector2::zeros);
+        // |n| is twice the area: the radial component is area-weighted as it stands.
+        *region_radial.entry(roots[face]).or_default() += n.x * radial.x + n.y * radial.y;
+        *region_area.entry(roots[face]).or_default() += n.norm();
+    }
+    let largest = region_area.values().copied().fold(0.0, f64::max);
+    let region_skin = |region: usize| -> Option<Skin> {
+        let area = region_area[&region];
+        let radial = region_radial[&region] / area.max(1e-300);
+        if area < MIN_SKIN_REGION_SHARE * largest || radial.abs() < 0.2 {
+            return None;
+        }
+        Some(if radial > 0.0 { Skin::Outer } else { Skin::Inner })
+    };
+    let mut skins: Vec<Option<Option<Skin>>> = vec![None; points.len()];
+    for (face, t) in mesh.triangles.iter().enumerate() {
+        let skin = region_skin(roots[face]);
+        for &v in t {
+            let entry = &mut skins[v as usize];
+            *entry = match *entry {
+                None => Some(skin),
+                Some(previous) if previous == skin => Some(skin),
+                // A vertex on the border of two regions belongs to neither.
+                Some(_) => Some(None),
+            };
+        }
+    }
+    skins.into_iter().map(Option::flatten).collect()
+}
+
 /// The `fraction` quantile of `values` (sorted in place).
 pub fn quantile(values: &mut [f64], fraction: f64) -> f64 {
     if values.is_empty() {
@@ -198,20 +294,17 @@ impl PreparedSurface {
         let start_frame = start_axis.to_oriented_frame(&centroid);
         let points: Vec<Point> = mesh.positions.iter().map(|p| start_frame * p).collect();
         let normals: Vec<Vector> = normals_scan.iter().map(|n| start_frame * n).collect();
-        let skins: Vec<Option<Skin>> = points
-            .iter()
-            .zip(&normals)
-            .map(|(p, n)| {
-                let radial = Vector2::new(p.x, p.y).try_normalize(1e-9)?;
-                let radial_component = n.x * radial.x + n.y * radial.y;
-                let tangential_component = -n.x * radial.y + n.y * radial.x;
-                if tangential_component.abs() > MAX_TANGENTIAL_NORMAL || radial_component.abs() < MIN_RADIAL_NORMAL {
-                    return None;
-                }
-                let skin = if radial_component > 0.0 { Skin::Outer } else { Skin::Inner };
-                surface.includes(skin).then_some(skin)
-            })
-            .collect();
+        let skins: Vec<Option<Skin>> = if mesh.triangles.is_empty() {
+            points.iter().zip(&normals).map(|(p, n)| skin_by_normal(p, n).filter(|&skin| surface.includes(skin))).collect()
+        } else {
+            // Both tests must agree: the regions drop break faces whose normals look like
+            // skin, the normals drop what leaked into a skin region across a blunt edge.
+            skins_by_smooth_regions(mesh, &points)
+                .into_iter()
+                .zip(points.iter().zip(&normals))
+                .map(|(skin, (p, n))| skin.filter(|&skin| surface.includes(skin) && skin_by_normal(p, n) == Some(skin)))
+                .collect()
+        };
         let skin_triangles: Vec<([u32; 3], Skin)> = mesh
             .triangles
             .iter()

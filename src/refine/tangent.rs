@@ -31,6 +31,8 @@ pub struct TangentObjective {
     pub edge: Edge,
     /// The tolerance epsilon, millimetres.
     pub tolerance_mm: f64,
+    /// Optional weight per vertical section, as a bootstrap draws them.
+    pub section_weights: Option<Vec<f64>>,
 }
 
 /// Vertices farther than this from the start frame's extreme cannot become the extreme
@@ -53,7 +55,12 @@ impl TangentObjective {
             })
             .filter(|points: &Vec<_>| !points.is_empty())
             .collect();
-        TangentObjective { section_points, edge, tolerance_mm }
+        TangentObjective { section_points, edge, tolerance_mm, section_weights: None }
+    }
+
+    /// Number of vertical sections.
+    pub fn section_count(&self) -> usize {
+        self.section_points.len()
     }
 
     /// The extreme height of each vertical section under a candidate frame.
@@ -79,11 +86,20 @@ impl Objective for TangentObjective {
             Edge::Rim => extremes.iter().copied().fold(f64::NEG_INFINITY, f64::max),
             Edge::Base => extremes.iter().copied().fold(f64::INFINITY, f64::min),
         };
-        let kept: Vec<f64> = extremes.iter().map(|z| z - extreme).filter(|d| d.abs() < self.tolerance_mm).collect();
-        if kept.len() < 3 {
+        let (mut total, mut weight_sum, mut kept) = (0.0, 0.0, 0);
+        for (index, z) in extremes.iter().enumerate() {
+            let weight = self.section_weights.as_ref().map_or(1.0, |w| w[index]);
+            let d = z - extreme;
+            if d.abs() < self.tolerance_mm && weight > 0.0 {
+                total += weight * d * d;
+                weight_sum += weight;
+                kept += 1;
+            }
+        }
+        if kept < 3 {
             return f64::INFINITY;
         }
-        kept.iter().map(|d| d * d).sum::<f64>() / kept.len() as f64
+        total / weight_sum
     }
 }
 
