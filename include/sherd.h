@@ -128,10 +128,16 @@ typedef uint32_t SherdMeshAttribute;
 #endif // __cplusplus
 
 /**
+ * An immutable byte buffer owned by the library. Read it with `sherd_buffer_contents`;
+ * release it with `sherd_buffer_free`.
+ */
+typedef struct SherdBuffer SherdBuffer;
+
+/**
  * An owned triangle mesh (or point cloud) in the scan's frame and units.
  *
- * Create it with `sherd_mesh_from_arrays`, `sherd_mesh_from_arrays_f32` or
- * `sherd_mesh_clone`; release it with `sherd_mesh_free`. A mesh may be used from any
+ * Create it with `sherd_mesh_from_arrays`, `sherd_mesh_from_arrays_f32`,
+ * `sherd_mesh_read` or `sherd_mesh_clone`; release it with `sherd_mesh_free`. A mesh may be used from any
  * thread, and different meshes concurrently; one mesh must not be modified (the
  * `_set_` functions) while another thread uses it.
  */
@@ -165,6 +171,26 @@ extern "C" {
 #endif // __cplusplus
 
 /**
+ * Writes a pointer to the buffer's first byte to `*out_data` and its length in bytes
+ * to `*out_size`. The pointer stays valid until `sherd_buffer_free`. Text buffers (JSON
+ * reports) are followed by a NUL byte not counted in the size.
+ *
+ * # Safety
+ * `buffer` must be a live handle; `out_data` and `out_size` must be writable.
+ */
+SherdStatus sherd_buffer_contents(const SherdBuffer *buffer,
+                                  const uint8_t **out_data,
+                                  size_t *out_size);
+
+/**
+ * Releases a buffer. NULL is accepted and ignored; freeing twice is undefined behaviour.
+ *
+ * # Safety
+ * `buffer` must be NULL or a handle from this library not freed before.
+ */
+void sherd_buffer_free(SherdBuffer *buffer);
+
+/**
  * The message of the most recent call on this thread that did not return
  * `SHERD_STATUS_OK`, as a NUL-terminated UTF-8 string; the empty string if there was
  * none. Successful calls leave it unchanged.
@@ -174,6 +200,56 @@ extern "C" {
  * its own message, so concurrent calls on other threads do not disturb it.
  */
 const char *sherd_last_error_message(void);
+
+/**
+ * Writes the mesh moved into the oriented frame (axis on z, base down, the fragment's
+ * centroid on +x: `sherd_mesh_oriented_transform`) as PLY, binary little-endian when
+ * `binary` is true; normals are rotated with it. Atomic: no half-written file on error.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `path` must be a
+ * NUL-terminated string.
+ */
+SherdStatus sherd_export_oriented_ply(const SherdMesh *mesh,
+                                      const SherdAxis *axis,
+                                      const char *path,
+                                      bool binary);
+
+/**
+ * Writes the most informative angle for the profile (the tallest cut, away from the
+ * fracture faces), radians about the axis from the fragment's centroid, to `*out_angle_rad`.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `out_angle_rad` writable.
+ */
+SherdStatus sherd_profile_most_informative_angle(const SherdMesh *mesh,
+                                                 const SherdAxis *axis,
+                                                 double *out_angle_rad);
+
+/**
+ * Writes the profile section at `angle_rad` about the axis (NaN: the most informative
+ * angle) as CSV `curve,index,r_mm,z_mm,closed`, one line per point in the oriented
+ * frame. Atomic. `SHERD_STATUS_DEGENERATE_GEOMETRY` when the cut misses the mesh.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `path` must be a
+ * NUL-terminated string.
+ */
+SherdStatus sherd_export_profile_csv(const SherdMesh *mesh,
+                                     const SherdAxis *axis,
+                                     double angle_rad,
+                                     const char *path);
+
+/**
+ * Like `sherd_export_profile_csv`, into a new NUL-terminated buffer `*out_csv`.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `out_csv` writable.
+ */
+SherdStatus sherd_profile_csv(const SherdMesh *mesh,
+                              const SherdAxis *axis,
+                              double angle_rad,
+                              SherdBuffer **out_csv);
 
 /**
  * Creates a mesh from host arrays of double-precision positions.
@@ -361,6 +437,30 @@ SherdStatus sherd_mesh_copy_corner_uvs(const SherdMesh *mesh, float *out, size_t
 SherdStatus sherd_mesh_copy_quality(const SherdMesh *mesh, float *out, size_t vertex_capacity);
 
 /**
+ * Reads a scan: PLY (ASCII or binary), OBJ (with its MTL and texture), STL, XYZ or PTS,
+ * chosen by the file's extension. `path` is a NUL-terminated path (UTF-8, or the OS's
+ * bytes on Unix).
+ *
+ * Errors: `SHERD_STATUS_IO` (cannot open or read), `SHERD_STATUS_PARSE` (malformed; the
+ * message names the file and the line or element), `SHERD_STATUS_INVALID_ARGUMENT`
+ * (unknown extension, invalid content such as an index past the vertex count).
+ *
+ * # Safety
+ * `path` must be a NUL-terminated string; `out_mesh` must be writable.
+ */
+SherdStatus sherd_mesh_read(const char *path, SherdMesh **out_mesh);
+
+/**
+ * Writes the mesh as PLY (binary little-endian when `binary` is true, ASCII otherwise)
+ * with its normals, colours and quality. The file is replaced atomically: on error no
+ * half-written file is left.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `path` a NUL-terminated string.
+ */
+SherdStatus sherd_mesh_write_ply(const SherdMesh *mesh, const char *path, bool binary);
+
+/**
  * Writes the rigid transform from the scan's frame to the oriented frame as a
  * row-major 4x4 matrix (`out_matrix[4 * row + column]`, 16 doubles) acting on column
  * vectors `(x, y, z, 1)`: the axis becomes the z axis, base down and rim up, and
@@ -380,7 +480,7 @@ SherdStatus sherd_axis_oriented_transform(const SherdAxis *axis,
 
 /**
  * Like `sherd_axis_oriented_transform` with the centroid of `mesh`'s vertices as the
- * reference point: the transform that places the fragment in the drawing's frame.
+ * reference point: the frame every profile, measurement, drawing and export uses.
  *
  * # Safety
  * `mesh` must be a live handle; otherwise as for `sherd_axis_oriented_transform`.

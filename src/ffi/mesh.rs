@@ -1,16 +1,19 @@
 //! `SherdMesh`: a mesh built from the host's arrays (Blender's and MeshLab's vertex and
 //! face buffers, no temporary files) or read from a scan file, and copied back out.
 
+use std::ffi::c_char;
+
 use super::error::{Failure, FfiResult};
 use super::panic::guard;
-use super::pointers::{borrow, borrow_mut, host_slice, host_slice_mut, require, write_out};
+use super::pointers::{borrow, borrow_mut, host_slice, host_slice_mut, path_from, require, write_out};
 use super::status::SherdStatus;
+use crate::mesh::io::PlyEncoding;
 use crate::mesh::{Mesh, Point, Vector};
 
 /// An owned triangle mesh (or point cloud) in the scan's frame and units.
 ///
-/// Create it with `sherd_mesh_from_arrays`, `sherd_mesh_from_arrays_f32` or
-/// `sherd_mesh_clone`; release it with `sherd_mesh_free`. A mesh may be used from any
+/// Create it with `sherd_mesh_from_arrays`, `sherd_mesh_from_arrays_f32`,
+/// `sherd_mesh_read` or `sherd_mesh_clone`; release it with `sherd_mesh_free`. A mesh may be used from any
 /// thread, and different meshes concurrently; one mesh must not be modified (the
 /// `_set_` functions) while another thread uses it.
 pub struct SherdMesh {
@@ -406,4 +409,44 @@ pub unsafe extern "C" fn sherd_mesh_copy_quality(mesh: *const SherdMesh, out: *m
         let values: Vec<[f32; 1]> = quality.iter().map(|&q| [q]).collect();
         copy_out(&values, out, vertex_capacity, "vertices")
     })
+}
+
+/// Reads a scan: PLY (ASCII or binary), OBJ (with its MTL and texture), STL, XYZ or PTS,
+/// chosen by the file's extension. `path` is a NUL-terminated path (UTF-8, or the OS's
+/// bytes on Unix).
+///
+/// Errors: `SHERD_STATUS_IO` (cannot open or read), `SHERD_STATUS_PARSE` (malformed; the
+/// message names the file and the line or element), `SHERD_STATUS_INVALID_ARGUMENT`
+/// (unknown extension, invalid content such as an index past the vertex count).
+///
+/// # Safety
+/// `path` must be a NUL-terminated string; `out_mesh` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_mesh_read(path: *const c_char, out_mesh: *mut *mut SherdMesh) -> SherdStatus {
+    guard("sherd_mesh_read", || {
+        let path = unsafe { path_from(path, "path") }?;
+        require(out_mesh.cast_const(), "out_mesh")?;
+        let mesh = crate::mesh::io::read_mesh(&path)?;
+        unsafe { hand_out(out_mesh, mesh) }
+    })
+}
+
+/// Writes the mesh as PLY (binary little-endian when `binary` is true, ASCII otherwise)
+/// with its normals, colours and quality. The file is replaced atomically: on error no
+/// half-written file is left.
+///
+/// # Safety
+/// `mesh` must be a live handle; `path` a NUL-terminated string.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_mesh_write_ply(mesh: *const SherdMesh, path: *const c_char, binary: bool) -> SherdStatus {
+    guard("sherd_mesh_write_ply", || {
+        let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
+        let path = unsafe { path_from(path, "path") }?;
+        Ok(crate::mesh::io::write_ply(&path, mesh, ply_encoding(binary))?)
+    })
+}
+
+/// The PLY encoding for the `binary` flag of the C API.
+pub(crate) fn ply_encoding(binary: bool) -> PlyEncoding {
+    if binary { PlyEncoding::BinaryLittleEndian } else { PlyEncoding::Ascii }
 }

@@ -1,5 +1,5 @@
-//! The axis as the host sees it (`SherdAxis`) and the oriented frame as a 4x4 matrix
-//! hosts apply to their own objects.
+//! Orientation: automatic and from three points, the axis as the host sees it
+//! (`SherdAxis`), and the oriented frame as a 4x4 matrix hosts apply to their objects.
 
 use super::error::{Failure, FfiResult};
 use super::mesh::{SherdMesh, mesh_ref};
@@ -8,6 +8,7 @@ use super::pointers::{SizedStruct, host_slice, host_slice_mut, read_sized};
 use super::status::SherdStatus;
 use crate::mesh::Point;
 use crate::orient::{Axis, AxisRecord};
+use crate::profile::section::oriented_frame;
 
 /// A vessel's rotation axis in the scan's frame and units: a point on it and a unit
 /// direction pointing from the base towards the rim.
@@ -92,7 +93,7 @@ pub unsafe extern "C" fn sherd_axis_oriented_transform(
 }
 
 /// Like `sherd_axis_oriented_transform` with the centroid of `mesh`'s vertices as the
-/// reference point: the transform that places the fragment in the drawing's frame.
+/// reference point: the frame every profile, measurement, drawing and export uses.
 ///
 /// # Safety
 /// `mesh` must be a live handle; otherwise as for `sherd_axis_oriented_transform`.
@@ -105,7 +106,6 @@ pub unsafe extern "C" fn sherd_mesh_oriented_transform(
     guard("sherd_mesh_oriented_transform", || {
         let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
         let axis = unsafe { read_axis(axis, "axis") }?;
-        let centroid = mesh.centroid().ok_or_else(|| Failure::invalid("the mesh has no vertices"))?;
-        write_matrix(&axis.to_oriented_frame(&centroid), out_matrix)
+        write_matrix(&oriented_frame(mesh, &axis), out_matrix)
     })
 }

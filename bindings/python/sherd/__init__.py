@@ -22,6 +22,7 @@ from .errors import (
     Status,
     last_error_message,
 )
+from .export import export_oriented_ply, export_profile_csv, most_informative_angle, profile_csv, profile_section
 from .mesh import Attribute, Mesh
 
 if lib.sherd_abi_version() != ABI_VERSION:
@@ -34,5 +35,6 @@ __version__ = lib.sherd_version().decode()
 __all__ = [
     "Attribute", "Axis", "BufferTooSmallError", "DegenerateGeometryError", "InvalidArgumentError", "Mesh",
     "NeedsManualOrientationError", "NotAvailableError", "NotConvergedError", "NullPointerError", "PanicError",
-    "ParseError", "SherdError", "SherdIOError", "Status", "last_error_message", "oriented_transform",
+    "ParseError", "SherdError", "SherdIOError", "Status", "export_oriented_ply", "export_profile_csv",
+    "last_error_message", "most_informative_angle", "oriented_transform", "profile_csv", "profile_section",
 ]

@@ -105,3 +105,23 @@ _declare("sherd_mesh_copy_quality", Status, SherdMesh_p, c_float_p, ctypes.c_siz
 
 _declare("sherd_axis_oriented_transform", Status, ctypes.POINTER(SherdAxis), c_double_p, c_double_p)
 _declare("sherd_mesh_oriented_transform", Status, SherdMesh_p, ctypes.POINTER(SherdAxis), c_double_p)
+
+
+
+class SherdBuffer(ctypes.Structure):
+    """Opaque handle."""
+
+
+SherdBuffer_p = ctypes.POINTER(SherdBuffer)
+SherdAxis_p = ctypes.POINTER(SherdAxis)
+
+_declare("sherd_buffer_contents", Status, SherdBuffer_p, ctypes.POINTER(ctypes.c_void_p), c_size_t_p)
+_declare("sherd_buffer_free", None, SherdBuffer_p)
+
+_declare("sherd_mesh_read", Status, ctypes.c_char_p, ctypes.POINTER(SherdMesh_p))
+_declare("sherd_mesh_write_ply", Status, SherdMesh_p, ctypes.c_char_p, ctypes.c_bool)
+
+_declare("sherd_export_oriented_ply", Status, SherdMesh_p, SherdAxis_p, ctypes.c_char_p, ctypes.c_bool)
+_declare("sherd_export_profile_csv", Status, SherdMesh_p, SherdAxis_p, ctypes.c_double, ctypes.c_char_p)
+_declare("sherd_profile_csv", Status, SherdMesh_p, SherdAxis_p, ctypes.c_double, ctypes.POINTER(SherdBuffer_p))
+_declare("sherd_profile_most_informative_angle", Status, SherdMesh_p, SherdAxis_p, c_double_p)

@@ -3,6 +3,7 @@ MeshLab's vertex and face matrices) and copied back out as numpy arrays."""
 
 import ctypes
 import enum
+import os
 
 import numpy as np
 
@@ -190,3 +191,14 @@ class Mesh:
         check(c.lib.sherd_mesh_oriented_transform(self.handle, ctypes.byref(c_axis),
                                                   as_pointer(matrix, ctypes.c_double)))
         return matrix
+
+    @classmethod
+    def read(cls, path):
+        """Reads a scan (PLY, OBJ with MTL and texture, STL, XYZ, PTS; by extension)."""
+        handle = c.SherdMesh_p()
+        check(c.lib.sherd_mesh_read(os.fsencode(path), ctypes.byref(handle)))
+        return cls(handle)
+
+    def write_ply(self, path, binary=True):
+        """Writes the mesh as PLY (atomically)."""
+        check(c.lib.sherd_mesh_write_ply(self.handle, os.fsencode(path), bool(binary)))
