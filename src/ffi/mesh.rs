@@ -3,7 +3,9 @@
 
 use std::ffi::c_char;
 
+use super::buffer::{SherdBuffer, hand_out_report};
 use super::error::{Failure, FfiResult};
+use super::options::{SherdRepairOptions, options_or_default};
 use super::panic::guard;
 use super::pointers::{borrow, borrow_mut, host_slice, host_slice_mut, path_from, require, write_out};
 use super::status::SherdStatus;
@@ -449,4 +451,45 @@ pub unsafe extern "C" fn sherd_mesh_write_ply(mesh: *const SherdMesh, path: *con
 /// The PLY encoding for the `binary` flag of the C API.
 pub(crate) fn ply_encoding(binary: bool) -> PlyEncoding {
     if binary { PlyEncoding::BinaryLittleEndian } else { PlyEncoding::Ascii }
+}
+
+/// Repairs the mesh in place: merges duplicate (or close) vertices, removes degenerate
+/// and duplicate faces and unreferenced vertices, optionally keeps only the largest
+/// component. `options` may be NULL for the defaults. When `out_report_json` is not
+/// NULL it receives what was changed, as a JSON object in a new `SherdBuffer`.
+///
+/// # Safety
+/// `mesh` must be a live handle not used by another thread; `options` NULL or live;
+/// `out_report_json` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_mesh_repair(
+    mesh: *mut SherdMesh,
+    options: *const SherdRepairOptions,
+    out_report_json: *mut *mut SherdBuffer,
+) -> SherdStatus {
+    guard("sherd_mesh_repair", || {
+        let mesh = mesh_mut(mesh)?;
+        let options = unsafe { options_or_default(options, |builder| &builder.options) }?;
+        let report = crate::mesh::repair::repair(mesh, &options);
+        unsafe { hand_out_report(out_report_json, &report) }
+    })
+}
+
+/// Creates a decimated copy of `mesh` with about `target_faces` triangles (quadric edge
+/// collapse keeping boundaries, topology and interpolated colours); `mesh` is unchanged.
+/// A mesh already at or below the target is copied as it is.
+///
+/// # Safety
+/// `mesh` must be a live handle; `out_mesh` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_mesh_decimate(mesh: *const SherdMesh, target_faces: usize, out_mesh: *mut *mut SherdMesh) -> SherdStatus {
+    guard("sherd_mesh_decimate", || {
+        let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
+        require(out_mesh.cast_const(), "out_mesh")?;
+        if target_faces == 0 {
+            return Err(Failure::invalid("`target_faces` must be at least 1"));
+        }
+        let decimated = crate::mesh::decimate::decimate(mesh, target_faces)?;
+        unsafe { hand_out(out_mesh, decimated) }
+    })
 }

@@ -12,33 +12,27 @@ static SherdAxis new_axis(void) {
     return axis;
 }
 
-/* Angle in degrees between the two axes' lines, ignoring their sense. */
-static double line_angle_deg(const SherdAxis *a, const SherdAxis *b) {
-    double dot = 0.0, na = 0.0, nb = 0.0;
+/* Cosine of the angle between the two axes' directions. */
+static double direction_cosine(const SherdAxis *a, const SherdAxis *b) {
+    double dot = 0.0, na = 0.0, nb = 0.0, cosine;
     int k;
     for (k = 0; k < 3; ++k) {
         dot += a->direction[k] * b->direction[k];
         na += a->direction[k] * a->direction[k];
         nb += b->direction[k] * b->direction[k];
     }
-    dot = fabs(dot) / sqrt(na * nb);
-    if (dot > 1.0) dot = 1.0;
-    return acos(dot) * 180.0 / 3.14159265358979323846;
+    cosine = dot / sqrt(na * nb);
+    return cosine > 1.0 ? 1.0 : (cosine < -1.0 ? -1.0 : cosine);
 }
 
 /* Angle in degrees between the directions, sense included (base to rim). */
 static double angle_deg(const SherdAxis *a, const SherdAxis *b) {
-    double dot = 0.0, na = 0.0, nb = 0.0;
-    int k;
-    for (k = 0; k < 3; ++k) {
-        dot += a->direction[k] * b->direction[k];
-        na += a->direction[k] * a->direction[k];
-        nb += b->direction[k] * b->direction[k];
-    }
-    dot /= sqrt(na * nb);
-    if (dot > 1.0) dot = 1.0;
-    if (dot < -1.0) dot = -1.0;
-    return acos(dot) * 180.0 / 3.14159265358979323846;
+    return acos(direction_cosine(a, b)) * 180.0 / 3.14159265358979323846;
+}
+
+/* Angle in degrees between the two axes' lines, ignoring their sense. */
+static double line_angle_deg(const SherdAxis *a, const SherdAxis *b) {
+    return acos(fabs(direction_cosine(a, b))) * 180.0 / 3.14159265358979323846;
 }
 
 /* Copies the mesh's positions into a new array (free it). */

@@ -24,6 +24,7 @@ from .errors import (
 )
 from .export import export_oriented_ply, export_profile_csv, most_informative_angle, profile_csv, profile_section
 from .mesh import Attribute, Mesh
+from .pipeline import Orientation, orient_automatic, orient_from_three_points, synthetic_sherd
 
 if lib.sherd_abi_version() != ABI_VERSION:
     raise ImportError(
@@ -36,5 +37,6 @@ __all__ = [
     "Attribute", "Axis", "BufferTooSmallError", "DegenerateGeometryError", "InvalidArgumentError", "Mesh",
     "NeedsManualOrientationError", "NotAvailableError", "NotConvergedError", "NullPointerError", "PanicError",
     "ParseError", "SherdError", "SherdIOError", "Status", "export_oriented_ply", "export_profile_csv",
-    "last_error_message", "most_informative_angle", "oriented_transform", "profile_csv", "profile_section",
+    "last_error_message", "most_informative_angle", "orient_automatic", "orient_from_three_points", "Orientation",
+    "oriented_transform", "profile_csv", "profile_section", "synthetic_sherd",
 ]
