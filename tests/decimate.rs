@@ -2,6 +2,7 @@
 //! flipped faces, attributes interpolated, surface followed. MeshLab comparisons are in
 //! `tests/meshlab_decimation.rs`.
 
+mod support;
 #[path = "support/decimation_vessel.rs"]
 mod vessel;
 
@@ -143,7 +144,7 @@ fn fixed_boundary_does_not_move() {
 
 #[test]
 fn keeps_the_hole_of_a_torus() {
-    let input = vessel::torus(60, 30);
+    let input = support::torus(60, 30, 30.0, 10.0, 0.0);
     assert_eq!(euler_characteristic(&input), 0);
     let (output, report) = decimate_with_options(&input, &DecimateOptions::with_target_faces(12)).unwrap();
     assert_manifold(&output);

