@@ -536,9 +536,13 @@ fn decode_scalar(bytes: &[u8], kind: ScalarType, big_endian: bool) -> f64 {
 }
 
 /// Converts a colour channel to 0-255: floats are 0-1, integers are scaled from their range.
+#[inline]
 fn colour_channel(value: f64, kind: ScalarType) -> u8 {
-    let scaled = if kind == ScalarType::U8 { value } else { value * 255.0 / kind.max_value() };
-    scaled.round().clamp(0.0, 255.0) as u8
+    if kind == ScalarType::U8 {
+        // Exact already (a uchar read as f64); `as` saturates what an ascii file overstates.
+        return value as u8;
+    }
+    (value * 255.0 / kind.max_value()).round().clamp(0.0, 255.0) as u8
 }
 
 /// Builds the error for a fault while reading `property` of element `index` of `element`.
