@@ -48,6 +48,9 @@ pub struct DecimateOptions {
     /// one removes one, so the result has `target_faces` or one fewer, unless the
     /// topology or the boundary forbid further collapses (see the report).
     pub target_faces: usize,
+    /// When set, decimation also stops once at most this many vertices remain
+    /// (whichever target is reached first): the orientation asks for ~10k vertices.
+    pub target_vertices: Option<usize>,
     /// How boundaries are kept.
     pub boundary: BoundaryPolicy,
     /// Collapses that turn any remaining face's normal by more than this, from its
@@ -69,6 +72,7 @@ impl Default for DecimateOptions {
     fn default() -> Self {
         DecimateOptions {
             target_faces: 20_000,
+            target_vertices: None,
             boundary: BoundaryPolicy::Weighted { weight: 100.0 },
             max_normal_change_deg: 60.0,
             quality_threshold: Some(0.3),
@@ -81,6 +85,12 @@ impl DecimateOptions {
     /// The default options with another target face count.
     pub fn with_target_faces(target_faces: usize) -> Self {
         DecimateOptions { target_faces, ..Default::default() }
+    }
+
+    /// The default options aiming at a vertex count instead (the face target is then
+    /// one face, so only the vertex target stops decimation).
+    pub fn with_target_vertices(target_vertices: usize) -> Self {
+        DecimateOptions { target_faces: 1, target_vertices: Some(target_vertices), ..Default::default() }
     }
 }
 
@@ -113,7 +123,7 @@ pub struct DecimateReport {
     pub boundary_edges_after: usize,
     /// Edges with more than two faces in the input (their vertices are frozen).
     pub non_manifold_edges: usize,
-    /// True when the target face count was reached.
+    /// True when the target face (or vertex) count was reached.
     pub reached_target: bool,
     /// Largest collapse cost accepted, as an RMS distance in mm (the square root of
     /// the quadric error divided by the quadric's total area weight).
@@ -141,8 +151,8 @@ pub fn decimate_with_options(mesh: &Mesh, options: &DecimateOptions) -> Result<(
     if mesh.is_point_cloud() {
         return Err(Error::InvalidArgument("decimation needs a mesh with faces, got a point cloud".into()));
     }
-    if options.target_faces == 0 {
-        return Err(Error::InvalidArgument("decimation target must be at least one face".into()));
+    if options.target_faces == 0 || options.target_vertices == Some(0) {
+        return Err(Error::InvalidArgument("decimation target must be at least one face and one vertex".into()));
     }
     if !(options.max_normal_change_deg > 0.0 && options.max_normal_change_deg <= 180.0) {
         return Err(Error::InvalidArgument(format!(
@@ -161,7 +171,7 @@ pub fn decimate_with_options(mesh: &Mesh, options: &DecimateOptions) -> Result<(
         return Err(Error::InvalidArgument(format!("boundary weight must be finite and >= 0, got {weight}")));
     }
 
-    if mesh.face_count() <= options.target_faces {
+    if mesh.face_count() <= options.target_faces || options.target_vertices.is_some_and(|n| mesh.vertex_count() <= n) {
         let report = DecimateReport {
             input_vertices: mesh.vertex_count(),
             input_faces: mesh.face_count(),
@@ -174,7 +184,7 @@ pub fn decimate_with_options(mesh: &Mesh, options: &DecimateOptions) -> Result<(
         return Ok((mesh.clone(), report));
     }
     let mut collapser = Collapser::new(mesh, options);
-    collapser.run(options.target_faces);
+    collapser.run(options.target_faces, options.target_vertices.unwrap_or(0));
     let (result, mut report) = collapser.finish();
     report.elapsed_seconds = started.elapsed().as_secs_f64();
     Ok((result, report))
@@ -505,7 +515,7 @@ impl Collapser {
                 let input_normal = Vector::from(self.input_normals[corner as usize / 3].map(f64::from));
                 if !(after_squared > 1e-24 * before_squared)
                     || turned_too_far(before.dot(&after), before_squared * after_squared)
-                    || turned_too_far(input_normal.dot(&after), after_squared)
+                    || (input_normal != Vector::zeros() && turned_too_far(input_normal.dot(&after), after_squared))
                 {
                     return Err(Refusal);
                 }
@@ -576,10 +586,11 @@ impl Collapser {
         merged_degree >= if on_boundary { 2 } else { 3 }
     }
 
-    fn run(&mut self, target_faces: usize) {
+    fn run(&mut self, target_faces: usize, target_vertices: usize) {
         // The largest error / area ratio so far, as a fraction to avoid dividing in the loop.
         let mut max_error_area: (f64, f64) = (0.0, 1.0);
-        while self.live_faces > target_faces {
+        let mut live_vertices = self.first_corner.iter().filter(|&&c| c != NONE).count();
+        while self.live_faces > target_faces && live_vertices > target_vertices {
             let Some(candidate) = self.heap.pop() else { break };
             let (a, b) = (candidate.first, candidate.second);
             if !self.vertex_alive[a as usize]
@@ -609,10 +620,11 @@ impl Collapser {
                 max_error_area = (placement.error, area);
             }
             self.collapse(a, b, placement);
+            live_vertices -= 1;
             self.compact_heap_if_stale();
         }
         self.report.max_collapse_error_mm = (max_error_area.0 / max_error_area.1).sqrt();
-        self.report.reached_target = self.live_faces <= target_faces;
+        self.report.reached_target = self.live_faces <= target_faces || live_vertices <= target_vertices;
     }
 
     /// Merges `removed` into `kept` at the placement, then queues `kept`'s edges.
