@@ -1,2 +1,21 @@
-//! The stable C ABI (see `include/sherd.h`). Handles, status codes, the thread's last
-//! error and the panic boundary live here; no algorithm does.
+//! The stable C ABI (`include/sherd.h`, generated from this module by cbindgen).
+//!
+//! Rules (design: "The C ABI"): opaque handles with `_free` functions; result structs
+//! that begin with a `size` field; every entry point returns a `SherdStatus` and leaves
+//! a message for `sherd_last_error_message()`; enum-like inputs are `uint32_t` checked on
+//! entry; every pointer is checked for NULL; every body runs inside `catch_unwind`. No
+//! algorithm lives here: each entry point converts, calls the Rust API and converts back.
+
+pub mod error;
+pub mod mesh;
+pub mod orient;
+mod panic;
+mod pointers;
+pub mod status;
+pub mod version;
+
+pub use error::sherd_last_error_message;
+pub use mesh::*;
+pub use orient::*;
+pub use status::*;
+pub use version::*;

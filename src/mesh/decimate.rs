@@ -1,1 +1,798 @@
-//! Quadric edge-collapse decimation.
+//! Quadric edge-collapse decimation (Garland and Heckbert 1997), as MeshLab's
+//! "Quadric Edge Collapse Decimation" does it: every vertex carries the error quadric
+//! ([`crate::mesh::quadric::Quadric`]) of its faces' planes (area weighted), edges are
+//! collapsed cheapest first to the point minimising the sum of their endpoints'
+//! quadrics, and a collapse is refused when it would change the topology (the link
+//! condition of Dey et al. 1999), flip or fold a face (normal check), or it is
+//! penalised when it creates slivers (MeshLab's quality threshold). Boundaries are kept
+//! by quadrics of planes through each boundary edge perpendicular to its face (section
+//! 6.1 of the paper), or frozen ([`BoundaryPolicy`]). Colours, normals and quality are
+//! interpolated along each collapsed edge.
+//!
+//! Speed: the orientation decimates 500k-face scans to about 20k faces first, so the
+//! structures are flat arrays: per-vertex circular lists of face corners threaded
+//! through one `next_corner` array, a binary heap of candidate edges with lazy
+//! deletion (an entry is stale when either endpoint changed after it was pushed), and
+//! no hash map. Candidates are re-evaluated when popped, since their neighbourhood
+//! may have changed.
+
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+use std::time::Instant;
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::mesh::quadric::Quadric;
+use crate::mesh::{Mesh, Point, Vector};
+use crate::{Error, Result};
+
+/// How boundary edges (edges with one face) are kept.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum BoundaryPolicy {
+    /// Boundary vertices never move and are never removed (MeshLab's "Preserve
+    /// Boundary"): the boundary stays exactly as it was, but keeps all its vertices.
+    Fixed,
+    /// Each boundary edge adds the quadric of the plane through it perpendicular to its
+    /// face, weighted by `weight` times the squared edge length: boundary vertices may
+    /// slide along the boundary but pay heavily for leaving it (Garland and Heckbert,
+    /// section 6.1).
+    Weighted {
+        /// Relative weight of the boundary planes (face planes are weighted by area).
+        weight: f64,
+    },
+}
+
+/// Parameters of [`decimate_with_options`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DecimateOptions {
+    /// Number of faces to reach. Each interior collapse removes two faces, a boundary
+    /// one removes one, so the result has `target_faces` or one fewer, unless the
+    /// topology or the boundary forbid further collapses (see the report).
+    pub target_faces: usize,
+    /// How boundaries are kept.
+    pub boundary: BoundaryPolicy,
+    /// Collapses that turn any remaining face's normal by more than this, from its
+    /// current or from its input direction, are refused; 90 degrees or more would
+    /// allow flipped faces.
+    pub max_normal_change_deg: f64,
+    /// MeshLab's quality threshold: a collapse whose worst new triangle has a quality
+    /// `q < threshold` (`q` = 1 for equilateral, 0 for degenerate; `4√3 area / Σ edge²`)
+    /// has its cost multiplied by `threshold / q`. `None` ignores triangle shape.
+    pub quality_threshold: Option<f64>,
+    /// Place the kept vertex at the quadric's minimiser (true) or at the best point of
+    /// the collapsed edge (false).
+    pub optimal_placement: bool,
+}
+
+impl Default for DecimateOptions {
+    /// The settings the orientation uses: 20k faces (about 10k vertices), weighted
+    /// boundary, normals turned at most 60°, quality threshold 0.3, optimal placement.
+    fn default() -> Self {
+        DecimateOptions {
+            target_faces: 20_000,
+            boundary: BoundaryPolicy::Weighted { weight: 100.0 },
+            max_normal_change_deg: 60.0,
+            quality_threshold: Some(0.3),
+            optimal_placement: true,
+        }
+    }
+}
+
+impl DecimateOptions {
+    /// The default options with another target face count.
+    pub fn with_target_faces(target_faces: usize) -> Self {
+        DecimateOptions { target_faces, ..Default::default() }
+    }
+}
+
+/// What [`decimate_with_options`] did.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct DecimateReport {
+    /// Vertices of the input.
+    pub input_vertices: usize,
+    /// Faces of the input.
+    pub input_faces: usize,
+    /// Vertices of the result (unreferenced input vertices are dropped).
+    pub output_vertices: usize,
+    /// Faces of the result.
+    pub output_faces: usize,
+    /// Input faces with a repeated vertex, dropped before decimating.
+    pub degenerate_faces_dropped: usize,
+    /// Edge collapses performed.
+    pub collapses: usize,
+    /// Candidate collapses refused because they would change the topology.
+    pub refused_for_topology: usize,
+    /// Candidate collapses refused because a face would turn by more than the limit or
+    /// degenerate.
+    pub refused_for_normals: usize,
+    /// Vertices that never moved: on non-manifold edges, and on the boundary with
+    /// [`BoundaryPolicy::Fixed`].
+    pub frozen_vertices: usize,
+    /// Boundary edges before and after.
+    pub boundary_edges_before: usize,
+    /// Boundary edges after decimation.
+    pub boundary_edges_after: usize,
+    /// Edges with more than two faces in the input (their vertices are frozen).
+    pub non_manifold_edges: usize,
+    /// True when the target face count was reached.
+    pub reached_target: bool,
+    /// Largest collapse cost accepted, as an RMS distance in mm (the square root of
+    /// the quadric error divided by the quadric's total area weight).
+    pub max_collapse_error_mm: f64,
+    /// Per-corner texture coordinates cannot follow collapses across seams: they (and
+    /// the texture) are dropped, and this says so.
+    pub texture_dropped: bool,
+    /// Wall-clock time of the decimation.
+    pub elapsed_seconds: f64,
+}
+
+/// Decimates `mesh` to `target_faces` faces with the default options (see
+/// [`DecimateOptions::default`]).
+pub fn decimate(mesh: &Mesh, target_faces: usize) -> Result<Mesh> {
+    decimate_with_options(mesh, &DecimateOptions::with_target_faces(target_faces)).map(|(mesh, _)| mesh)
+}
+
+/// Decimates `mesh` by quadric edge collapse; returns the result and what was done.
+///
+/// Errors: an invalid mesh ([`Mesh::validate`]), a point cloud, a zero target, a
+/// non-finite or non-positive option.
+pub fn decimate_with_options(mesh: &Mesh, options: &DecimateOptions) -> Result<(Mesh, DecimateReport)> {
+    let started = Instant::now();
+    mesh.validate()?;
+    if mesh.is_point_cloud() {
+        return Err(Error::InvalidArgument("decimation needs a mesh with faces, got a point cloud".into()));
+    }
+    if options.target_faces == 0 {
+        return Err(Error::InvalidArgument("decimation target must be at least one face".into()));
+    }
+    if !(options.max_normal_change_deg > 0.0 && options.max_normal_change_deg <= 180.0) {
+        return Err(Error::InvalidArgument(format!(
+            "max_normal_change_deg must be in (0, 180], got {}",
+            options.max_normal_change_deg
+        )));
+    }
+    if let Some(threshold) = options.quality_threshold
+        && !(threshold > 0.0 && threshold <= 1.0)
+    {
+        return Err(Error::InvalidArgument(format!("quality_threshold must be in (0, 1], got {threshold}")));
+    }
+    if let BoundaryPolicy::Weighted { weight } = options.boundary
+        && !(weight.is_finite() && weight >= 0.0)
+    {
+        return Err(Error::InvalidArgument(format!("boundary weight must be finite and >= 0, got {weight}")));
+    }
+
+    if mesh.face_count() <= options.target_faces {
+        let report = DecimateReport {
+            input_vertices: mesh.vertex_count(),
+            input_faces: mesh.face_count(),
+            output_vertices: mesh.vertex_count(),
+            output_faces: mesh.face_count(),
+            reached_target: true,
+            elapsed_seconds: started.elapsed().as_secs_f64(),
+            ..Default::default()
+        };
+        return Ok((mesh.clone(), report));
+    }
+    let mut collapser = Collapser::new(mesh, options);
+    collapser.run(options.target_faces);
+    let (result, mut report) = collapser.finish();
+    report.elapsed_seconds = started.elapsed().as_secs_f64();
+    Ok((result, report))
+}
+
+const NONE: u32 = u32::MAX;
+const BOUNDARY: u8 = 1;
+const FROZEN: u8 = 2;
+
+/// A candidate collapse of the edge `(first, second)`, cheapest first in the heap.
+#[derive(Clone, Copy, Debug)]
+struct Candidate {
+    cost: f32,
+    first: u32,
+    second: u32,
+    /// The collapse counter when pushed: stale once either endpoint changed later.
+    pushed_at: u32,
+}
+
+impl PartialEq for Candidate {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+impl Eq for Candidate {}
+impl PartialOrd for Candidate {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+impl Ord for Candidate {
+    /// Reversed, so that `BinaryHeap` (a max-heap) pops the cheapest.
+    fn cmp(&self, other: &Self) -> Ordering {
+        other.cost.total_cmp(&self.cost)
+    }
+}
+
+/// A collapse as evaluated: where the kept vertex goes and at what cost.
+#[derive(Clone, Copy, Debug)]
+struct Placement {
+    position: Vector,
+    /// Parameter along `first -> second` used to interpolate attributes.
+    t: f64,
+    /// Quadric error at `position` (area-weighted squared distance, mm⁴).
+    error: f64,
+    /// `error`, floored and penalised for slivers: the heap's key.
+    cost: f64,
+}
+
+/// Why a collapse was refused.
+enum Refusal {
+    Topology,
+    Normals,
+}
+
+struct Collapser {
+    /// Positions relative to `origin`, so that quadrics of scans far from the origin
+    /// keep their precision.
+    positions: Vec<Vector>,
+    origin: Vector,
+    triangles: Vec<[u32; 3]>,
+    face_alive: Vec<bool>,
+    /// Each face's unit normal in the input: the normal check compares with it too,
+    /// so that a face cannot turn over by many small steps.
+    input_normals: Vec<[f32; 3]>,
+    live_faces: usize,
+    /// Head of each vertex's list of face corners (`3 * face + slot`), or `NONE`.
+    first_corner: Vec<u32>,
+    /// Next corner of the same vertex, or `NONE`.
+    next_corner: Vec<u32>,
+    quadrics: Vec<Quadric>,
+    /// Sum of plane weights per vertex (area), to express costs as distances.
+    quadric_area: Vec<f64>,
+    flags: Vec<u8>,
+    vertex_alive: Vec<bool>,
+    changed_at: Vec<u32>,
+    /// Scratch marks for neighbourhood queries, compared with `mark_counter`.
+    marks: Vec<u32>,
+    mark_counter: u32,
+    neighbours: Vec<u32>,
+    colors: Option<Vec<[f32; 4]>>,
+    normals: Option<Vec<Vector>>,
+    quality: Option<Vec<f32>>,
+    heap: BinaryHeap<Candidate>,
+    collapses: u32,
+    min_cos_normal_change: f64,
+    quality_threshold: Option<f64>,
+    optimal_placement: bool,
+    /// Costs below this count as this (as MeshLab's quadric epsilon): on exactly flat
+    /// patches triangle quality alone decides.
+    cost_floor: f64,
+    report: DecimateReport,
+}
+
+impl Collapser {
+    fn new(mesh: &Mesh, options: &DecimateOptions) -> Self {
+        let vertex_count = mesh.vertex_count();
+        let (low, high) = mesh.bounding_box().expect("validated mesh with faces has vertices");
+        let origin = (low.coords + high.coords) / 2.0;
+        let diagonal = (high - low).norm().max(f64::MIN_POSITIVE);
+        let positions: Vec<Vector> = mesh.positions.iter().map(|p| p.coords - origin).collect();
+        let mut report = DecimateReport {
+            input_vertices: vertex_count,
+            input_faces: mesh.face_count(),
+            texture_dropped: mesh.corner_uvs.is_some() || mesh.texture.is_some(),
+            ..Default::default()
+        };
+        let triangles: Vec<[u32; 3]> = mesh
+            .triangles
+            .iter()
+            .copied()
+            .filter(|[a, b, c]| a != b && b != c && a != c)
+            .collect();
+        report.degenerate_faces_dropped = mesh.face_count() - triangles.len();
+
+        let mut first_corner = vec![NONE; vertex_count];
+        let mut next_corner = vec![NONE; 3 * triangles.len()];
+        for (face, triangle) in triangles.iter().enumerate() {
+            for (slot, &vertex) in triangle.iter().enumerate() {
+                let corner = 3 * face + slot;
+                next_corner[corner] = first_corner[vertex as usize];
+                first_corner[vertex as usize] = corner as u32;
+            }
+        }
+
+        let input_normals = triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|v| positions[v as usize]);
+                let normal = (b - a).cross(&(c - a)).try_normalize(0.0).unwrap_or_default();
+                [normal.x as f32, normal.y as f32, normal.z as f32]
+            })
+            .collect();
+        let mut collapser = Collapser {
+            input_normals,
+            positions,
+            origin,
+            live_faces: triangles.len(),
+            face_alive: vec![true; triangles.len()],
+            triangles,
+            first_corner,
+            next_corner,
+            quadrics: vec![Quadric::default(); vertex_count],
+            quadric_area: vec![0.0; vertex_count],
+            flags: vec![0; vertex_count],
+            vertex_alive: vec![true; vertex_count],
+            changed_at: vec![0; vertex_count],
+            marks: vec![0; vertex_count],
+            mark_counter: 0,
+            neighbours: Vec::new(),
+            colors: mesh.colors.as_ref().map(|colors| {
+                colors.iter().map(|c| c.map(f32::from)).collect()
+            }),
+            normals: mesh.normals.clone(),
+            quality: mesh.quality.clone(),
+            heap: BinaryHeap::new(),
+            collapses: 0,
+            min_cos_normal_change: options.max_normal_change_deg.to_radians().cos(),
+            quality_threshold: options.quality_threshold,
+            optimal_placement: options.optimal_placement,
+            cost_floor: 1e-30 * diagonal.powi(4),
+            report,
+        };
+        let edges = collapser.build_quadrics(options.boundary);
+        collapser.push_initial_candidates(&edges);
+        collapser
+    }
+
+    /// Classifies edges by sorting them (no hash map), flags boundary and
+    /// non-manifold vertices, and sums the face and boundary plane quadrics. Returns
+    /// the manifold edges (one or two faces) as `low << 32 | high` keys.
+    fn build_quadrics(&mut self, boundary: BoundaryPolicy) -> Vec<u64> {
+        let mut edges: Vec<(u64, u32)> = Vec::with_capacity(3 * self.triangles.len());
+        for (face, &[a, b, c]) in self.triangles.iter().enumerate() {
+            for (slot, (from, to)) in [(a, b), (b, c), (c, a)].into_iter().enumerate() {
+                let key = (u64::from(from.min(to)) << 32) | u64::from(from.max(to));
+                edges.push((key, (3 * face + slot) as u32));
+            }
+        }
+        edges.par_sort_unstable_by_key(|&(key, _)| key);
+
+        for triangle in &self.triangles {
+            let [a, b, c] = triangle.map(|v| self.positions[v as usize]);
+            let scaled_normal = (b - a).cross(&(c - a));
+            let area = 0.5 * scaled_normal.norm();
+            if area <= 0.0 {
+                continue;
+            }
+            let quadric = Quadric::from_plane_through(&a, &(scaled_normal / (2.0 * area)), area);
+            for &v in triangle {
+                self.quadrics[v as usize] += quadric;
+                self.quadric_area[v as usize] += area;
+            }
+        }
+
+        let mut manifold_edges = Vec::with_capacity(edges.len() / 2 + 1);
+        let mut run_start = 0;
+        while run_start < edges.len() {
+            let key = edges[run_start].0;
+            let run_end = run_start + edges[run_start..].iter().take_while(|(k, _)| *k == key).count();
+            let (low, high) = ((key >> 32) as usize, (key & 0xffff_ffff) as usize);
+            match run_end - run_start {
+                1 => {
+                    self.report.boundary_edges_before += 1;
+                    self.flags[low] |= BOUNDARY;
+                    self.flags[high] |= BOUNDARY;
+                    let corner = edges[run_start].1 as usize;
+                    self.add_boundary_quadric(corner, boundary);
+                    manifold_edges.push(key);
+                }
+                2 => manifold_edges.push(key),
+                _ => {
+                    self.report.non_manifold_edges += 1;
+                    self.flags[low] |= FROZEN;
+                    self.flags[high] |= FROZEN;
+                }
+            }
+            run_start = run_end;
+        }
+        if boundary == BoundaryPolicy::Fixed {
+            for flag in &mut self.flags {
+                if *flag & BOUNDARY != 0 {
+                    *flag |= FROZEN;
+                }
+            }
+        }
+        self.report.frozen_vertices = self.flags.iter().filter(|&&f| f & FROZEN != 0).count();
+        manifold_edges
+    }
+
+    /// The plane through the boundary edge starting at `corner`, perpendicular to its
+    /// face, added to both endpoints.
+    fn add_boundary_quadric(&mut self, corner: usize, boundary: BoundaryPolicy) {
+        let BoundaryPolicy::Weighted { weight } = boundary else { return };
+        let (face, slot) = (corner / 3, corner % 3);
+        let triangle = self.triangles[face];
+        let [from, to, opposite] = [triangle[slot], triangle[(slot + 1) % 3], triangle[(slot + 2) % 3]];
+        let [p, q, r] = [from, to, opposite].map(|v| self.positions[v as usize]);
+        let edge = q - p;
+        let face_normal = edge.cross(&(r - p));
+        let Some(plane_normal) = face_normal.cross(&edge).try_normalize(0.0) else { return };
+        let quadric = Quadric::from_plane_through(&p, &plane_normal, weight * edge.norm_squared());
+        self.quadrics[from as usize] += quadric;
+        self.quadrics[to as usize] += quadric;
+    }
+
+    /// Evaluates every edge once (in parallel: evaluation only reads) and heapifies.
+    fn push_initial_candidates(&mut self, edges: &[u64]) {
+        let this = &*self;
+        let candidates: Vec<Candidate> = edges
+            .par_iter()
+            .filter_map(|&key| {
+                let (first, second) = ((key >> 32) as u32, key as u32);
+                let placement = this.evaluate(first, second).ok()?;
+                Some(Candidate { cost: placement.cost as f32, first, second, pushed_at: 0 })
+            })
+            .collect();
+        self.heap = BinaryHeap::from(candidates);
+    }
+
+    /// A mark value no vertex carries yet, for neighbourhood queries.
+    fn fresh_mark(&mut self) -> u32 {
+        if self.mark_counter == u32::MAX {
+            self.marks.fill(0);
+            self.mark_counter = 0;
+        }
+        self.mark_counter += 1;
+        self.mark_counter
+    }
+
+    fn corners_of(&self, vertex: u32) -> CornerIter<'_> {
+        CornerIter { next_corner: &self.next_corner, current: self.first_corner[vertex as usize] }
+    }
+
+    fn edge_face_count(&self, a: u32, b: u32) -> usize {
+        self.corners_of(a).filter(|&c| self.triangles[c as usize / 3].contains(&b)).count()
+    }
+
+    /// Where the collapse of `first`/`second` puts the kept vertex and what it costs,
+    /// or why it must not happen (normals). Topology is checked separately, in
+    /// [`Collapser::topology_allows`], because it needs scratch marks.
+    fn evaluate(&self, first: u32, second: u32) -> std::result::Result<Placement, Refusal> {
+        let (i, j) = (first as usize, second as usize);
+        let (p, q) = (self.positions[i], self.positions[j]);
+        let quadric = self.quadrics[i] + self.quadrics[j];
+        // Boundary vertices stay on the boundary polyline: a free minimiser of noisy
+        // boundary planes can leave it by several times the noise.
+        let (frozen, on_boundary) = (|v: usize| self.flags[v] & FROZEN != 0, |v: usize| self.flags[v] & BOUNDARY != 0);
+        let (position, t) = match () {
+            _ if frozen(i) && frozen(j) => return Err(Refusal::Topology),
+            _ if frozen(i) => (p, 0.0),
+            _ if frozen(j) => (q, 1.0),
+            _ if on_boundary(i) && on_boundary(j) => quadric.minimizer_on_segment(&p, &q),
+            _ if on_boundary(i) => (p, 0.0),
+            _ if on_boundary(j) => (q, 1.0),
+            _ => {
+                let on_edge = quadric.minimizer_on_segment(&p, &q);
+                let optimal = self.optimal_placement.then(|| quadric.minimizer()).flatten();
+                match optimal {
+                    // A minimiser far from the edge comes from a nearly singular quadric
+                    // (noise on a flat patch); the edge's best point is safer there.
+                    Some(x) if (x - (p + q) / 2.0).norm_squared() <= (q - p).norm_squared() => {
+                        let direction = q - p;
+                        let t = ((x - p).dot(&direction) / direction.norm_squared()).clamp(0.0, 1.0);
+                        (x, t)
+                    }
+                    _ => on_edge,
+                }
+            }
+        };
+
+        let mut worst_quality: f64 = 1.0;
+        for (vertex, other) in [(first, second), (second, first)] {
+            for corner in self.corners_of(vertex) {
+                let triangle = self.triangles[corner as usize / 3];
+                if triangle.contains(&other) {
+                    continue; // removed by the collapse
+                }
+                let slot = corner as usize % 3;
+                let a = self.positions[triangle[(slot + 1) % 3] as usize];
+                let b = self.positions[triangle[(slot + 2) % 3] as usize];
+                let before = (a - self.positions[vertex as usize]).cross(&(b - self.positions[vertex as usize]));
+                let after = (a - position).cross(&(b - position));
+                let (before_length, after_length) = (before.norm(), after.norm());
+                let input_normal = Vector::from(self.input_normals[corner as usize / 3].map(f64::from));
+                if !(after_length > 1e-12 * before_length)
+                    || before.dot(&after) < self.min_cos_normal_change * before_length * after_length
+                    || input_normal.dot(&after) < self.min_cos_normal_change * after_length
+                {
+                    return Err(Refusal::Normals);
+                }
+                if self.quality_threshold.is_some() {
+                    let squared_edges = (a - position).norm_squared() + (b - position).norm_squared() + (b - a).norm_squared();
+                    // 4√3 area / Σ edge² with area = |after| / 2.
+                    worst_quality = worst_quality.min(2.0 * 3f64.sqrt() * after_length / squared_edges);
+                }
+            }
+        }
+
+        let error = quadric.error_at(&position);
+        let mut cost = error.max(self.cost_floor);
+        if let Some(threshold) = self.quality_threshold
+            && worst_quality < threshold
+        {
+            cost *= threshold / worst_quality.max(1e-6);
+        }
+        Ok(Placement { position, t, error, cost })
+    }
+
+    /// The link condition (Dey et al. 1999): the vertices adjacent to both endpoints
+    /// are exactly the opposite corners of the edge's faces; plus no interior edge
+    /// between two boundary vertices (it would pinch the surface), and no vertex left
+    /// with too few neighbours (a tetrahedron or a lone triangle would degenerate).
+    fn topology_allows(&mut self, first: u32, second: u32) -> bool {
+        let shared_faces = self.edge_face_count(first, second);
+        if shared_faces == 0 || shared_faces > 2 {
+            return false;
+        }
+        let both_on_boundary = self.flags[first as usize] & self.flags[second as usize] & BOUNDARY != 0;
+        if shared_faces == 2 && both_on_boundary {
+            return false;
+        }
+        let around_first = self.fresh_mark();
+        let counted = self.fresh_mark();
+        let mut first_degree = 0;
+        let corners = CornerIter { next_corner: &self.next_corner, current: self.first_corner[first as usize] };
+        for corner in corners {
+            let triangle = self.triangles[corner as usize / 3];
+            for v in triangle {
+                if v != first && self.marks[v as usize] != around_first {
+                    self.marks[v as usize] = around_first;
+                    first_degree += 1;
+                }
+            }
+        }
+        let (mut common, mut second_degree) = (0, 0);
+        let corners = CornerIter { next_corner: &self.next_corner, current: self.first_corner[second as usize] };
+        for corner in corners {
+            for v in self.triangles[corner as usize / 3] {
+                if v == second || self.marks[v as usize] == counted {
+                    continue;
+                }
+                if self.marks[v as usize] == around_first {
+                    common += 1;
+                }
+                if v != first {
+                    second_degree += 1;
+                }
+                self.marks[v as usize] = counted;
+            }
+        }
+        if common != shared_faces {
+            return false;
+        }
+        // Neighbours of the merged vertex: both sets minus each other, shared once.
+        let merged_degree = (first_degree - 1) + second_degree - common;
+        let on_boundary = (self.flags[first as usize] | self.flags[second as usize]) & BOUNDARY != 0;
+        merged_degree >= if on_boundary { 2 } else { 3 }
+    }
+
+    fn run(&mut self, target_faces: usize) {
+        // The largest error / area ratio so far, as a fraction to avoid dividing in the loop.
+        let mut max_error_area: (f64, f64) = (0.0, 1.0);
+        while self.live_faces > target_faces {
+            let Some(candidate) = self.heap.pop() else { break };
+            let (a, b) = (candidate.first, candidate.second);
+            if !self.vertex_alive[a as usize]
+                || !self.vertex_alive[b as usize]
+                || self.changed_at[a as usize] > candidate.pushed_at
+                || self.changed_at[b as usize] > candidate.pushed_at
+            {
+                continue;
+            }
+            if !self.topology_allows(a, b) {
+                self.report.refused_for_topology += 1;
+                continue;
+            }
+            let placement = match self.evaluate(a, b) {
+                Ok(placement) => placement,
+                Err(Refusal::Normals) => {
+                    self.report.refused_for_normals += 1;
+                    continue;
+                }
+                Err(Refusal::Topology) => {
+                    self.report.refused_for_topology += 1;
+                    continue;
+                }
+            };
+            // The neighbourhood changed since the push and made it dearer: queue it
+            // again at its true cost instead of collapsing out of order.
+            if placement.cost as f32 > candidate.cost * 1.0001 {
+                self.heap.push(Candidate { cost: placement.cost as f32, pushed_at: self.collapses, ..candidate });
+                continue;
+            }
+            let area = self.quadric_area[a as usize] + self.quadric_area[b as usize];
+            if placement.error * max_error_area.1 > max_error_area.0 * area {
+                max_error_area = (placement.error, area);
+            }
+            self.collapse(a, b, placement);
+            self.compact_heap_if_stale();
+        }
+        self.report.max_collapse_error_mm = (max_error_area.0 / max_error_area.1).sqrt();
+        self.report.reached_target = self.live_faces <= target_faces;
+    }
+
+    /// Merges `removed` into `kept` at the placement, then queues `kept`'s edges.
+    fn collapse(&mut self, first: u32, second: u32, placement: Placement) {
+        // The frozen endpoint (if any) is the one that stays; `t` is measured from `first`.
+        let (kept, removed) = if self.flags[second as usize] & FROZEN != 0 { (second, first) } else { (first, second) };
+        let (k, r) = (kept as usize, removed as usize);
+        let t_towards_second = placement.t;
+        let weight_of_second = t_towards_second as f32;
+        let (w_first, w_second) = (1.0 - weight_of_second, weight_of_second);
+        let (i, j) = (first as usize, second as usize);
+        if let Some(colors) = &mut self.colors {
+            let mixed: [f32; 4] = std::array::from_fn(|c| w_first * colors[i][c] + w_second * colors[j][c]);
+            colors[k] = mixed;
+        }
+        if let Some(normals) = &mut self.normals {
+            let mixed = normals[i] * f64::from(w_first) + normals[j] * f64::from(w_second);
+            normals[k] = mixed.try_normalize(1e-12).unwrap_or(normals[k]);
+        }
+        if let Some(quality) = &mut self.quality {
+            quality[k] = w_first * quality[i] + w_second * quality[j];
+        }
+        self.positions[k] = placement.position;
+        self.quadrics[k] = self.quadrics[k] + self.quadrics[r];
+        self.quadric_area[k] += self.quadric_area[r];
+        self.flags[k] |= self.flags[r];
+        self.vertex_alive[r] = false;
+
+        let mut corner = self.first_corner[r];
+        self.first_corner[r] = NONE;
+        while corner != NONE {
+            let next = self.next_corner[corner as usize];
+            let face = corner as usize / 3;
+            if self.triangles[face].contains(&kept) {
+                self.face_alive[face] = false;
+                self.live_faces -= 1;
+                for v in self.triangles[face] {
+                    if v != removed {
+                        self.unlink(v, face);
+                    }
+                }
+            } else {
+                self.triangles[face][corner as usize % 3] = kept;
+                self.next_corner[corner as usize] = self.first_corner[k];
+                self.first_corner[k] = corner;
+            }
+            corner = next;
+        }
+
+        self.collapses += 1;
+        self.report.collapses += 1;
+        self.changed_at[k] = self.collapses;
+        self.push_edges_of(kept);
+    }
+
+    /// Removes `face`'s corner from `vertex`'s list.
+    fn unlink(&mut self, vertex: u32, face: usize) {
+        let mut previous = NONE;
+        let mut corner = self.first_corner[vertex as usize];
+        while corner != NONE {
+            let next = self.next_corner[corner as usize];
+            if corner as usize / 3 == face {
+                if previous == NONE {
+                    self.first_corner[vertex as usize] = next;
+                } else {
+                    self.next_corner[previous as usize] = next;
+                }
+                return;
+            }
+            previous = corner;
+            corner = next;
+        }
+    }
+
+    fn push_edges_of(&mut self, vertex: u32) {
+        let stamp = self.fresh_mark();
+        let mut neighbours = std::mem::take(&mut self.neighbours);
+        neighbours.clear();
+        let corners = CornerIter { next_corner: &self.next_corner, current: self.first_corner[vertex as usize] };
+        for corner in corners {
+            for v in self.triangles[corner as usize / 3] {
+                if v != vertex && self.marks[v as usize] != stamp {
+                    self.marks[v as usize] = stamp;
+                    neighbours.push(v);
+                }
+            }
+        }
+        for &neighbour in &neighbours {
+            if let Ok(placement) = self.evaluate(vertex, neighbour) {
+                self.heap.push(Candidate {
+                    cost: placement.cost as f32,
+                    first: vertex,
+                    second: neighbour,
+                    pushed_at: self.collapses,
+                });
+            }
+        }
+        self.neighbours = neighbours;
+    }
+
+    /// Lazy deletion lets stale entries pile up; drop them when they dominate.
+    fn compact_heap_if_stale(&mut self) {
+        if self.heap.len() < 4 * self.live_faces + 4096 {
+            return;
+        }
+        let heap = std::mem::take(&mut self.heap);
+        let mut entries = heap.into_vec();
+        entries.retain(|c| {
+            let (a, b) = (c.first as usize, c.second as usize);
+            self.vertex_alive[a]
+                && self.vertex_alive[b]
+                && self.changed_at[a] <= c.pushed_at
+                && self.changed_at[b] <= c.pushed_at
+        });
+        self.heap = BinaryHeap::from(entries);
+    }
+
+    fn finish(mut self) -> (Mesh, DecimateReport) {
+        let mut new_index = vec![NONE; self.positions.len()];
+        let mut positions = Vec::new();
+        let mut kept_vertices = Vec::new();
+        let mut triangles = Vec::with_capacity(self.live_faces);
+        for (face, triangle) in self.triangles.iter().enumerate() {
+            if !self.face_alive[face] {
+                continue;
+            }
+            triangles.push(triangle.map(|v| {
+                let slot = &mut new_index[v as usize];
+                if *slot == NONE {
+                    *slot = positions.len() as u32;
+                    positions.push(Point::from(self.positions[v as usize] + self.origin));
+                    kept_vertices.push(v as usize);
+                }
+                *slot
+            }));
+        }
+        let colors = self.colors.as_ref().map(|colors| {
+            kept_vertices.iter().map(|&v| colors[v].map(|c| c.round().clamp(0.0, 255.0) as u8)).collect()
+        });
+        let normals = self.normals.as_ref().map(|normals| kept_vertices.iter().map(|&v| normals[v]).collect());
+        let quality = self.quality.as_ref().map(|quality| kept_vertices.iter().map(|&v| quality[v]).collect());
+        let result = Mesh { positions, triangles, normals, colors, quality, corner_uvs: None, texture: None };
+        self.report.output_vertices = result.vertex_count();
+        self.report.output_faces = result.face_count();
+        self.report.boundary_edges_after = count_boundary_edges(&result.triangles);
+        (result, self.report)
+    }
+}
+
+/// Number of edges with exactly one face.
+fn count_boundary_edges(triangles: &[[u32; 3]]) -> usize {
+    let mut keys: Vec<u64> = triangles
+        .iter()
+        .flat_map(|&[a, b, c]| [(a, b), (b, c), (c, a)])
+        .map(|(from, to)| (u64::from(from.min(to)) << 32) | u64::from(from.max(to)))
+        .collect();
+    keys.sort_unstable();
+    keys.chunk_by(|x, y| x == y).filter(|run| run.len() == 1).count()
+}
+
+struct CornerIter<'a> {
+    next_corner: &'a [u32],
+    current: u32,
+}
+
+impl Iterator for CornerIter<'_> {
+    type Item = u32;
+    fn next(&mut self) -> Option<u32> {
+        if self.current == NONE {
+            return None;
+        }
+        let corner = self.current;
+        self.current = self.next_corner[corner as usize];
+        Some(corner)
+    }
+}

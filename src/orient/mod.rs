@@ -1,7 +1,370 @@
 //! Pre-orientation (Wilczek et al. 2018, section 2.2): the rotation axis of the vessel a
 //! fragment came from, from its normals or from three points on a horizontal feature,
 //! with an honest verdict when the data do not determine it.
+//!
+//! Automatic pipeline ([`orient_automatic`]): working copy (decimated, smoothed,
+//! area-weighted normals) -> normal lines -> opposite-normal filter
+//! ([`opposite_normals`]) -> hypotheses from the line complex and the sampler
+//! ([`line_complex`]) -> multi-start Nelder-Mead and MM refinement ([`halir`],
+//! [`mm_regression`]) -> sense base to rim ([`direction`]) -> verdict ([`verdict`]).
 
 pub mod axis;
+pub mod direction;
+pub mod halir;
+pub mod line_complex;
+pub mod mm_regression;
+pub mod normal_lines;
+pub mod opposite_normals;
+pub mod surfaces;
+pub mod three_points;
+pub mod verdict;
+
+use std::time::Instant;
+
+use serde::{Deserialize, Serialize};
 
 pub use axis::{mean_point_distance_mm, Axis, AxisRecord};
+pub use surfaces::{segment_surfaces, Skin};
+pub use verdict::{Verdict, VerdictThresholds};
+
+use crate::mesh::{Mesh, Point};
+use crate::{Error, Result};
+use halir::HalirOptions;
+use line_complex::{CenteredLines, SamplerOptions};
+use normal_lines::NormalLines;
+
+/// Options of [`orient_automatic`].
+#[derive(Clone, Debug)]
+pub struct OrientOptions {
+    /// Vertex count of the working copy (the paper: about 10,000).
+    pub target_vertex_count: usize,
+    /// Laplacian smoothing iterations of the working copy (DACORD: 5).
+    pub smoothing_iterations: usize,
+    /// Confidence of the opposite-normal test (the paper: 0.95); `None` skips the test.
+    pub opposite_normal_confidence: Option<f64>,
+    /// The sampling initialiser.
+    pub sampler: SamplerOptions,
+    /// The multi-start search and the MM refinement.
+    pub halir: HalirOptions,
+    /// When the result is judged unreliable.
+    pub thresholds: VerdictThresholds,
+}
+
+impl Default for OrientOptions {
+    fn default() -> Self {
+        OrientOptions {
+            target_vertex_count: 10_000,
+            smoothing_iterations: 5,
+            opposite_normal_confidence: Some(0.95),
+            sampler: SamplerOptions::default(),
+            halir: HalirOptions::default(),
+            thresholds: VerdictThresholds::default(),
+        }
+    }
+}
+
+/// Options of [`orient_from_three_points`].
+#[derive(Clone, Copy, Debug)]
+pub struct ManualOptions {
+    /// Fraction of vertices kept as the pertinent surface, lowest normal-line-to-axis
+    /// distance first (the paper: 50%).
+    pub keep_fraction: f64,
+    /// A picked point farther than this from every vertex is an error; `None`: 2% of the
+    /// bounding-box diagonal.
+    pub max_pick_distance_mm: Option<f64>,
+}
+
+impl Default for ManualOptions {
+    fn default() -> Self {
+        ManualOptions { keep_fraction: 0.5, max_pick_distance_mm: None }
+    }
+}
+
+/// What the orientation found and how far to trust it.
+#[derive(Clone, Debug)]
+pub struct Orientation {
+    /// The axis in the input's frame, base to rim.
+    pub axis: Axis,
+    /// Whether the axis can be used.
+    pub verdict: Verdict,
+    /// Calibrated uncertainty of the direction, degrees (NaN for a manual axis).
+    pub angle_uncertainty_deg: f64,
+    /// Calibrated uncertainty of the axis position near the sherd, millimetres (NaN for a
+    /// manual axis).
+    pub position_uncertainty_mm: f64,
+    /// Vertices of the working copy kept as the surface of revolution.
+    pub kept_vertex_count: usize,
+    /// The details, for `--json` and the archaeologist's record.
+    pub report: OrientReport,
+}
+
+/// Serialisable details of an orientation.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub struct OrientReport {
+    /// "automatic" or "three points".
+    pub method: String,
+    /// Vertices of the input.
+    pub input_vertex_count: usize,
+    /// Vertices of the working copy.
+    pub working_vertex_count: usize,
+    /// Vertices kept by the opposite-normal test (or by the distance rule, for a manual axis).
+    pub kept_vertex_count: usize,
+    /// Whether the opposite-normal test ran, and why not if it did not.
+    pub opposite_filter: String,
+    /// Wall thickness seen by the opposite-normal test, millimetres.
+    pub wall_thickness_mm: Option<f64>,
+    /// Robust scale of the normal-line-to-axis residuals, millimetres.
+    pub residual_scale_mm: f64,
+    /// The residual scale seen from the axis: `atan(residual / median radius)`, degrees,
+    /// i.e. by how much the normals typically miss the axis.
+    pub residual_angle_deg: f64,
+    /// Median distance of the kept points to the axis, millimetres.
+    pub median_radius_mm: f64,
+    /// Fraction of lines the M-step kept (non-zero weight).
+    pub inlier_fraction: f64,
+    /// Second eigenvalue of the normals' scatter over the first (0 for a flat piece).
+    pub normal_spread: f64,
+    /// `λ1/λ2` of the line complex (near 1 for a near-spherical piece).
+    pub concurrency_ratio: f64,
+    /// Uncalibrated direction standard error from the fit's Hessian, degrees.
+    pub raw_angle_sigma_deg: f64,
+    /// Angle to the best competing axis, degrees, and its cost relative to the best.
+    pub competitor: Option<(f64, f64)>,
+    /// The cue that set the sense base to rim, and its strength.
+    pub direction_cue: String,
+    /// Strength of that cue (see [`direction::DirectionEvidence`]).
+    pub direction_strength: f64,
+    /// Radius of the picked circle (manual), millimetres.
+    pub circle_radius_mm: Option<f64>,
+    /// Wall-clock milliseconds per step.
+    pub timings_ms: Vec<(String, f64)>,
+}
+
+/// The automatic pre-orientation of a mesh or of a point cloud with normals.
+pub fn orient_automatic(mesh: &Mesh, options: &OrientOptions) -> Result<Orientation> {
+    let started = Instant::now();
+    let mut timings = Vec::new();
+    let mut lap = |name: &str, since: &mut Instant| {
+        timings.push((name.to_string(), since.elapsed().as_secs_f64() * 1e3));
+        *since = Instant::now();
+    };
+    let mut clock = started;
+    mesh.validate()?;
+    if mesh.positions.is_empty() {
+        return Err(Error::DegenerateGeometry("the mesh is empty: no vertex to orient".into()));
+    }
+    reject_coplanar(mesh)?;
+    let working = working_copy(mesh, options)?;
+    lap("working copy", &mut clock);
+    let all_lines = NormalLines::from_mesh(&working)?;
+    let mut report = OrientReport {
+        method: "automatic".into(),
+        input_vertex_count: mesh.vertex_count(),
+        working_vertex_count: working.vertex_count(),
+        ..Default::default()
+    };
+    let lines = select_surface_of_revolution(&working, &all_lines, options, &mut report);
+    lap("opposite normals", &mut clock);
+    report.kept_vertex_count = lines.len();
+    if lines.len() < options.thresholds.min_lines {
+        let reason = format!(
+            "too few points on the surface of revolution: {} kept of {} (at least {} needed)",
+            lines.len(),
+            all_lines.len(),
+            options.thresholds.min_lines
+        );
+        return Ok(unoriented(mesh, reason, report, lines.len()));
+    }
+    let centered = CenteredLines::new(&lines);
+    report.normal_spread = verdict::normal_spread(&centered);
+    let global = line_complex::fit_complex(&centered, None, None);
+    report.concurrency_ratio = global.map_or(1.0, |g| g.concurrency_ratio());
+    let sampler = options.sampler;
+    let seeds = line_complex::sample_hypotheses(&centered, &sampler);
+    lap("line complex and sampler", &mut clock);
+    let candidates = halir::multi_start(&centered, &seeds, &options.halir);
+    lap("multi-start", &mut clock);
+    let directions: Vec<_> = candidates.iter().map(|h| h.direction).take(options.halir.candidates_refined.max(1)).collect();
+    let fit = halir::refine_candidates(&centered, &directions, &options.halir)
+        .ok_or_else(|| Error::DegenerateGeometry("no axis candidate could be refined".into()))?;
+    lap("MM refinement", &mut clock);
+
+    let scale_mm = centered.scale_mm;
+    let mut axis = centered.to_scan_frame(&fit.point, &fit.direction);
+    let inliers: Vec<bool> = fit.robust_weights.iter().map(|w| *w > 0.0).collect();
+    report.inlier_fraction = inliers.iter().filter(|k| **k).count() as f64 / inliers.len() as f64;
+    // Residuals are algebraic (distance times sine) in centred units; their scale in mm.
+    report.residual_scale_mm = fit.scale * scale_mm;
+    report.raw_angle_sigma_deg = fit.angle_sigma_rad.to_degrees();
+    report.competitor = verdict::best_competitor(&fit);
+    let evidence = direction::direction_evidence(&lines, &inliers, &axis);
+    if evidence.score < 0.0 {
+        axis = axis.flipped();
+    }
+    report.direction_cue = evidence.cue;
+    report.direction_strength = evidence.score.abs();
+    axis = axis.normalized(&lines.centroid());
+    let mut radii: Vec<f64> = lines.points.iter().map(|p| axis.distance_to(p)).collect();
+    radii.sort_by(f64::total_cmp);
+    report.median_radius_mm = radii[radii.len() / 2];
+    report.residual_angle_deg = (report.residual_scale_mm / report.median_radius_mm.max(1e-9)).atan().to_degrees();
+    lap("direction", &mut clock);
+
+    let calibration = &options.thresholds;
+    let angle_uncertainty_deg = fit.angle_sigma_rad.to_degrees() * calibration.angle_sigma_factor;
+    let position_uncertainty_mm = fit.point_sigma * scale_mm * calibration.angle_sigma_factor;
+    let verdict = verdict::judge(&report, angle_uncertainty_deg, position_uncertainty_mm, calibration);
+    report.timings_ms = timings;
+    let kept_vertex_count = lines.len();
+    Ok(Orientation { axis, verdict, angle_uncertainty_deg, position_uncertainty_mm, kept_vertex_count, report })
+}
+
+/// All vertices in one plane: no thickness and no curvature, nothing to orient (an error,
+/// unlike a flat but thick base piece, which is a verdict).
+fn reject_coplanar(mesh: &Mesh) -> Result<()> {
+    let center = mesh.centroid().expect("non-empty");
+    let mut scatter = nalgebra::Matrix3::zeros();
+    for p in &mesh.positions {
+        let d = p - center;
+        scatter += d * d.transpose();
+    }
+    let eigen = nalgebra::SymmetricEigen::new(scatter);
+    let largest = eigen.eigenvalues.max();
+    if mesh.vertex_count() < 4 || eigen.eigenvalues.min() <= largest * 1e-12 {
+        return Err(Error::DegenerateGeometry(format!(
+            "all {} vertices lie in one plane (or on a line): a sherd has thickness and curvature",
+            mesh.vertex_count()
+        )));
+    }
+    Ok(())
+}
+
+fn unoriented(mesh: &Mesh, reason: String, report: OrientReport, kept: usize) -> Orientation {
+    let center = mesh.centroid().unwrap_or_else(Point::origin);
+    Orientation {
+        axis: Axis::new(center, crate::mesh::Vector::z()),
+        verdict: Verdict::NeedsManualOrientation { reason },
+        angle_uncertainty_deg: f64::INFINITY,
+        position_uncertainty_mm: f64::INFINITY,
+        kept_vertex_count: kept,
+        report,
+    }
+}
+
+/// The working copy the paper orients on: decimated to about the target vertex count
+/// and smoothed (meshes); point clouds are thinned by an even stride.
+fn working_copy(mesh: &Mesh, options: &OrientOptions) -> Result<Mesh> {
+    if mesh.is_point_cloud() {
+        if mesh.normals.is_none() {
+            return Err(Error::InvalidArgument(
+                "a point cloud without normals cannot be oriented: give normals or faces".into(),
+            ));
+        }
+        if mesh.vertex_count() <= options.target_vertex_count {
+            return Ok(mesh.clone());
+        }
+        let step = mesh.vertex_count() as f64 / options.target_vertex_count as f64;
+        let picked: Vec<usize> =
+            (0..options.target_vertex_count).map(|k| ((k as f64 * step) as usize).min(mesh.vertex_count() - 1)).collect();
+        let normals = mesh.normals.as_ref().expect("checked above");
+        return Ok(Mesh::from_points_and_normals(
+            picked.iter().map(|&i| mesh.positions[i]).collect(),
+            picked.iter().map(|&i| normals[i]).collect(),
+        ));
+    }
+    Ok(mesh.clone())
+}
+
+/// The lines on the surface of revolution: the opposite-normal test on meshes, all lines
+/// of point clouds (they carry no faces to cast rays at).
+fn select_surface_of_revolution(
+    working: &Mesh,
+    lines: &NormalLines,
+    options: &OrientOptions,
+    report: &mut OrientReport,
+) -> NormalLines {
+    let Some(confidence) = options.opposite_normal_confidence else {
+        report.opposite_filter = "not applied (disabled)".into();
+        return lines.clone();
+    };
+    if working.is_point_cloud() {
+        report.opposite_filter = "not applied (point cloud: no faces to cast rays at)".into();
+        return lines.clone();
+    }
+    let filter = opposite_normals::filter_opposite_normals(lines, confidence, |_, _| None);
+    report.wall_thickness_mm = filter.median_thickness_mm.is_finite().then_some(filter.median_thickness_mm);
+    // A piece that is mostly fracture (tiny sherds) or a single skin (an open scan) leaves
+    // too little: then the robust regression alone separates the outliers.
+    if filter.kept_count < options.thresholds.min_lines.max(lines.len() / 5) {
+        report.opposite_filter = format!(
+            "not applied: only {} of {} vertices have an opposite partner (single skin or mostly fracture)",
+            filter.kept_count,
+            lines.len()
+        );
+        return lines.clone();
+    }
+    report.opposite_filter = format!(
+        "kept {} of {} vertices (median deviation {:.1} deg, wall {:.2} mm)",
+        filter.kept_count,
+        lines.len(),
+        filter.median_deviation_deg,
+        filter.median_thickness_mm
+    );
+    lines.filtered(|i| filter.keep[i])
+}
+
+/// Manual pre-orientation from three points picked on one horizontal feature.
+pub fn orient_from_three_points(mesh: &Mesh, points: [Point; 3], options: &ManualOptions) -> Result<Orientation> {
+    mesh.validate()?;
+    if mesh.positions.is_empty() {
+        return Err(Error::DegenerateGeometry("the mesh is empty: no vertex to orient".into()));
+    }
+    let circle = three_points::fit_circle(&points)?;
+    let (low, high) = mesh.bounding_box().expect("non-empty");
+    let tolerance = options.max_pick_distance_mm.unwrap_or(0.02 * (high - low).norm());
+    for (k, p) in points.iter().enumerate() {
+        let nearest = mesh.positions.iter().map(|v| (v - p).norm()).fold(f64::INFINITY, f64::min);
+        if nearest > tolerance {
+            return Err(Error::InvalidArgument(format!(
+                "point {} ({:.3}, {:.3}, {:.3}) is {:.3} mm from the nearest vertex (at most {:.3} allowed): pick it on the sherd",
+                k + 1,
+                p.x,
+                p.y,
+                p.z,
+                nearest,
+                tolerance
+            )));
+        }
+    }
+    let lines = NormalLines::from_mesh(mesh)?;
+    let mut axis = Axis::new(circle.center, circle.normal);
+    let keep = surfaces::pertinent_mask(
+        &lines,
+        &axis,
+        &surfaces::SegmentOptions { max_line_distance_mm: None, keep_fraction: Some(options.keep_fraction) },
+    );
+    let evidence = direction::direction_evidence(&lines, &keep, &axis);
+    if evidence.score < 0.0 {
+        axis = axis.flipped();
+    }
+    let kept_vertex_count = keep.iter().filter(|k| **k).count();
+    let report = OrientReport {
+        method: "three points".into(),
+        input_vertex_count: mesh.vertex_count(),
+        working_vertex_count: mesh.vertex_count(),
+        kept_vertex_count,
+        opposite_filter: "not applied (manual)".into(),
+        direction_cue: evidence.cue,
+        direction_strength: evidence.score.abs(),
+        circle_radius_mm: Some(circle.radius_mm),
+        ..Default::default()
+    };
+    Ok(Orientation {
+        axis: axis.normalized(&circle.center),
+        verdict: Verdict::Oriented,
+        angle_uncertainty_deg: f64::NAN,
+        position_uncertainty_mm: f64::NAN,
+        kept_vertex_count,
+        report,
+    })
+}

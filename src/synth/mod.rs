@@ -1,3 +1,514 @@
 //! Synthetic sherds with known axes: a random vessel profile revolved with wall
 //! thickness, deformed, made noisy, broken along a Voronoi diagram and moved by random
 //! rigid motions. The test bed of every later layer (design: "Tests that count").
+//!
+//! * [`synthetic_sherd`] makes one fragment of a requested part ([`SherdPart`]) at a
+//!   requested resolution, with its [`GroundTruth`]; [`SherdOptions::hard_case`] gives the
+//!   fragments orientation must refuse (flat base piece, near-spherical piece, tiny piece).
+//! * [`generate_vessel`] breaks a whole vessel into fragments.
+//!
+//! Every fragment is a closed, watertight, outward-oriented triangle mesh with
+//! area-weighted vertex normals, and the same seed always gives the same bytes.
+
+pub mod deform;
+pub mod fracture;
+pub mod motion;
+pub mod profile;
+pub mod revolve;
+pub mod truth;
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+
+pub use deform::Deformation;
+pub use profile::{VesselProfile, VesselShape};
+pub use truth::{GroundTruth, HardCase, RigidMotion, SherdPart, SurfaceKind, VesselTruth};
+
+use crate::mesh::{Mesh, Point, Vector};
+use crate::orient::Axis;
+use fracture::{clean_mask, mid_surface_point, RoughVoronoi};
+use revolve::{build_shell, ParamGrid, Shell};
+
+/// How to make one synthetic sherd.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SherdOptions {
+    /// Approximate number of triangles (the result is within about 15 %).
+    pub target_faces: usize,
+    /// Standard deviation of the Gaussian noise added to every coordinate, mm.
+    pub noise_mm: f64,
+    /// The part wanted; `None` draws rim, body, base or complete profile at random.
+    pub part: Option<SherdPart>,
+    /// Range of the circumference angle the fragment should span, degrees (clamped to
+    /// 3-150; the break lines' roughness makes the result differ by a few degrees).
+    pub sector_deg: [f64; 2],
+    /// The vessel family; `None` draws an ordinary one at random.
+    pub shape: Option<VesselShape>,
+    /// Size of the hand-made irregularities (ovality, rim tilt, wobble): 0 gives an
+    /// ideal surface of revolution, 1 a carefully thrown vessel.
+    pub deformation_scale: f64,
+    /// How far the break lines wander from straight, mm.
+    pub roughness_mm: f64,
+    /// Move the fragment by a random rigid motion (otherwise it stays in the vessel
+    /// frame: axis on z, standing plane z = 0).
+    pub random_motion: bool,
+    /// Make one of the fragments orientation must refuse (overrides `part` and, for
+    /// near-spherical pieces, `shape`).
+    pub hard_case: Option<HardCase>,
+}
+
+impl Default for SherdOptions {
+    fn default() -> Self {
+        SherdOptions {
+            target_faces: 20_000,
+            noise_mm: 0.02,
+            part: None,
+            sector_deg: [15.0, 60.0],
+            shape: None,
+            deformation_scale: 1.0,
+            roughness_mm: 1.5,
+            random_motion: true,
+            hard_case: None,
+        }
+    }
+}
+
+impl SherdOptions {
+    /// Default options for a fragment of `part`.
+    pub fn for_part(part: SherdPart) -> Self {
+        SherdOptions { part: Some(part), ..Default::default() }
+    }
+
+    /// Default options for one of the hard cases.
+    pub fn hard_case(case: HardCase) -> Self {
+        SherdOptions { hard_case: Some(case), ..Default::default() }
+    }
+
+    /// An ideal fragment: no deformation, no noise (for tests of exact recovery).
+    pub fn ideal(self) -> Self {
+        SherdOptions { noise_mm: 0.0, deformation_scale: 0.0, ..self }
+    }
+}
+
+/// A synthetic sherd: a closed mesh with vertex normals, in the scan frame, and the truth.
+#[derive(Clone, Debug)]
+pub struct SynthSherd {
+    /// The fragment's surface (positions, outward triangles, vertex normals), mm.
+    pub mesh: Mesh,
+    /// What the fragment really is.
+    pub truth: GroundTruth,
+    /// Outer or inner skin, per vertex.
+    pub vertex_kinds: Vec<SurfaceKind>,
+    /// Outer skin, inner skin, fracture or rim top, per face.
+    pub face_kinds: Vec<SurfaceKind>,
+}
+
+/// How to break a whole vessel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VesselOptions {
+    /// The vessel family; `None` draws an ordinary one at random.
+    pub shape: Option<VesselShape>,
+    /// Number of Voronoi seeds (fragments), at least 2.
+    pub fragment_count: usize,
+    /// Size of the mesh cells, mm (each cell gives four triangles).
+    pub cell_size_mm: f64,
+    /// Standard deviation of the Gaussian noise added to every coordinate, mm.
+    pub noise_mm: f64,
+    /// As [`SherdOptions::deformation_scale`].
+    pub deformation_scale: f64,
+    /// How far the break lines wander from straight, mm.
+    pub roughness_mm: f64,
+    /// Move each fragment by its own random rigid motion; otherwise they stay in the
+    /// vessel frame and fit together.
+    pub random_motion: bool,
+}
+
+impl Default for VesselOptions {
+    fn default() -> Self {
+        VesselOptions {
+            shape: None,
+            fragment_count: 24,
+            cell_size_mm: 2.0,
+            noise_mm: 0.02,
+            deformation_scale: 1.0,
+            roughness_mm: 1.5,
+            random_motion: false,
+        }
+    }
+}
+
+/// A whole broken vessel.
+#[derive(Clone, Debug)]
+pub struct SynthVessel {
+    /// The fragments, one per Voronoi cell, in seed order.
+    pub fragments: Vec<SynthSherd>,
+    /// The vessel's outer profile `[r, z]` from the base centre to the rim, mm.
+    pub profile: Vec<[f64; 2]>,
+    /// The vessel's measurements and deformation.
+    pub vessel: VesselTruth,
+}
+
+/// Attempts at drawing a vessel and a fragment plan before settling for what came out.
+const MAX_ATTEMPTS: usize = 24;
+/// Spacing of the points of the truth profiles, mm.
+const PROFILE_STEP_MM: f64 = 0.5;
+/// Cells of margin around a fragment's coarse extent when meshing it finely.
+const WINDOW_MARGIN_CELLS: f64 = 3.0;
+
+/// One synthetic sherd for `seed` (deterministic: the same seed and options give the
+/// same mesh, whatever the number of threads).
+pub fn synthetic_sherd(seed: u64, options: &SherdOptions) -> SynthSherd {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let wanted_part = match options.hard_case {
+        Some(HardCase::FlatBase) => SherdPart::Flat,
+        Some(HardCase::NearSpherical) | Some(HardCase::Tiny) => SherdPart::Body,
+        None => options.part.unwrap_or_else(|| random_part(&mut rng)),
+    };
+    let shape_of = |rng: &mut ChaCha8Rng| match options.hard_case {
+        Some(HardCase::NearSpherical) => VesselShape::Globular,
+        _ => options.shape.unwrap_or_else(|| VesselShape::random(rng)),
+    };
+    let mut fallback = None;
+    for attempt in 0..MAX_ATTEMPTS {
+        let profile = VesselProfile::random(shape_of(&mut rng), &mut rng);
+        let deformation = Deformation::random(&mut rng, options.deformation_scale, profile.height_mm());
+        let Some(plan) = plan_fragment(&profile, wanted_part, options, &mut rng) else {
+            continue;
+        };
+        let voronoi = RoughVoronoi::new(plan.seeds.clone(), options.roughness_mm, &mut rng);
+        let Some(shell) = mesh_planned_fragment(&profile, &deformation, &voronoi, &plan, options.target_faces) else {
+            continue;
+        };
+        let part = classify(&profile, &shell);
+        let noise_seed = rng.random::<u64>();
+        let motion_seed = rng.random::<u64>();
+        if part == wanted_part || attempt + 1 == MAX_ATTEMPTS {
+            return finish(seed, shell, &profile, &deformation, part, options.hard_case, options.noise_mm, noise_seed, options.random_motion.then_some(motion_seed));
+        }
+        fallback.get_or_insert((shell, profile, deformation, part, noise_seed, motion_seed));
+    }
+    // Only reached when no attempt gave the wanted part: the truth says what it is.
+    let (shell, profile, deformation, part, noise_seed, motion_seed) =
+        fallback.expect("some attempt yields a fragment: every plan contains its own seed");
+    finish(seed, shell, &profile, &deformation, part, options.hard_case, options.noise_mm, noise_seed, options.random_motion.then_some(motion_seed))
+}
+
+/// A whole vessel broken into `options.fragment_count` fragments by a rough Voronoi
+/// diagram of seeds spread uniformly over its surface.
+pub fn generate_vessel(seed: u64, options: &VesselOptions) -> SynthVessel {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let shape = options.shape.unwrap_or_else(|| VesselShape::random(&mut rng));
+    let profile = VesselProfile::random(shape, &mut rng);
+    let deformation = Deformation::random(&mut rng, options.deformation_scale, profile.height_mm());
+    let length = profile.length_mm();
+    let max_radius = profile.max_radius_mm();
+    let mut seed_params = Vec::new();
+    while seed_params.len() < options.fragment_count.max(2) {
+        // Uniform over the surface: accept an arc length with probability r / r_max.
+        let s = rng.random_range(0.0..length);
+        if rng.random_range(0.0..max_radius) < profile.mid_radius_mm(s) {
+            seed_params.push((rng.random_range(0.0..std::f64::consts::TAU), s));
+        }
+    }
+    let seeds = seed_params.iter().map(|&(theta, s)| mid_surface_point(&profile, theta, s)).collect();
+    let voronoi = RoughVoronoi::new(seeds, options.roughness_mm, &mut rng);
+    let (area, parameter_area) = surface_areas(&profile);
+    let grid = ParamGrid::covering(None, [0.0, length], length, options.cell_size_mm.max(0.05), area / parameter_area);
+    let labels = voronoi.label_grid(&grid, &profile);
+    let fragment_seeds: Vec<(u64, u64)> = seed_params.iter().map(|_| (rng.random(), rng.random())).collect();
+    let fragments = seed_params
+        .par_iter()
+        .enumerate()
+        .filter_map(|(k, &(theta, s))| {
+            let mut mask: Vec<bool> = labels.iter().map(|&l| l == k as u32).collect();
+            if !clean_mask(&grid, &mut mask, cell_at(&grid, theta, s)) {
+                return None;
+            }
+            let shell = build_shell(&grid, &mask, &profile, &deformation);
+            let part = classify(&profile, &shell);
+            let (noise_seed, motion_seed) = fragment_seeds[k];
+            Some(finish(seed, shell, &profile, &deformation, part, None, options.noise_mm, noise_seed, options.random_motion.then_some(motion_seed)))
+        })
+        .collect();
+    SynthVessel {
+        fragments,
+        profile: profile.skin_polyline(1.0, PROFILE_STEP_MM),
+        vessel: vessel_truth(&profile, &deformation),
+    }
+}
+
+fn random_part(rng: &mut impl Rng) -> SherdPart {
+    match rng.random_range(0..20) {
+        0..7 => SherdPart::Rim,
+        7..14 => SherdPart::Body,
+        14..18 => SherdPart::Base,
+        _ => SherdPart::RimToBase,
+    }
+}
+
+/// Where a fragment should be: the Voronoi seeds (the fragment's own first) and where its
+/// own seed lies in the parameter plane.
+struct FragmentPlan {
+    seeds: Vec<Point>,
+    theta: f64,
+    s_mm: f64,
+}
+
+/// Seeds whose Voronoi cell is a fragment of `part`: the fragment's seed in the middle of
+/// the wanted arc-length band, and a ring of 6-9 neighbours at twice the wanted half
+/// extents, so that the bisectors fall on the wanted outline. Neighbours that would lie
+/// beyond the rim are left out when the fragment should reach the rim.
+fn plan_fragment(profile: &VesselProfile, part: SherdPart, options: &SherdOptions, rng: &mut impl Rng) -> Option<FragmentPlan> {
+    let length = profile.length_mm();
+    let edge = profile.base_edge_s_mm();
+    let wall = length - edge;
+    let uniform = |rng: &mut dyn rand::RngCore, low: f64, high: f64| low + (high - low) * rng.random::<f64>();
+    let [sector_low, sector_high] = [options.sector_deg[0].clamp(3.0, 150.0), options.sector_deg[1].clamp(3.0, 150.0)];
+    let mut sector_rad = uniform(rng, sector_low.min(sector_high), sector_low.max(sector_high) + 1e-9).to_radians();
+    let (s_low, s_high) = match (options.hard_case, part) {
+        (Some(HardCase::Tiny), _) => {
+            let centre = edge + wall * uniform(rng, 0.3, 0.7);
+            let half = uniform(rng, 6.0, 9.0);
+            sector_rad = 2.0 * uniform(rng, 6.0, 9.0) / profile.mid_radius_mm(centre);
+            (centre - half, centre + half)
+        }
+        (Some(HardCase::NearSpherical), _) => {
+            let [low, high] = profile.spherical_band_s_mm()?;
+            let band = high - low;
+            let size = band * uniform(rng, 0.25, 0.4);
+            let start = low + 0.15 * band + (0.7 * band - size) * rng.random::<f64>();
+            (start, start + size)
+        }
+        (_, SherdPart::Rim) => (length - wall * uniform(rng, 0.25, 0.6), length),
+        (_, SherdPart::Body) => {
+            let size = wall * uniform(rng, 0.2, 0.4);
+            let start = edge + 0.1 * wall + (0.8 * wall - size) * rng.random::<f64>();
+            (start, start + size)
+        }
+        (_, SherdPart::Base) => (edge * uniform(rng, 0.3, 0.7), edge + wall * uniform(rng, 0.15, 0.4)),
+        (_, SherdPart::RimToBase) => (edge * uniform(rng, 0.4, 0.8), length),
+        (_, SherdPart::Flat) => {
+            let start = edge * uniform(rng, 0.15, 0.35);
+            (start, (start + edge * uniform(rng, 0.3, 0.45)).min(0.85 * edge))
+        }
+    };
+    if s_high <= s_low {
+        return None;
+    }
+    let open_top = s_high >= length;
+    let centre_s = 0.5 * (s_low + s_high);
+    let centre_radius = profile.mid_radius_mm(centre_s).max(1.0);
+    let half_width = 0.5 * sector_rad * centre_radius;
+    let half_height = 0.5 * (s_high - s_low);
+    let mut seeds = vec![mid_surface_point(profile, 0.0, centre_s)];
+    let neighbour_count = rng.random_range(6..=9);
+    for k in 0..neighbour_count {
+        let jitter = uniform(rng, -0.3, 0.3) * std::f64::consts::PI / neighbour_count as f64;
+        let direction = std::f64::consts::TAU * k as f64 / neighbour_count as f64 + jitter;
+        let stretch = uniform(rng, 0.85, 1.15);
+        let s = centre_s + 2.0 * half_height * direction.sin() * stretch;
+        let theta = 2.0 * half_width * direction.cos() * stretch / centre_radius;
+        if open_top && s >= length {
+            continue;
+        }
+        seeds.push(mid_surface_point(profile, theta, s));
+    }
+    Some(FragmentPlan { seeds, theta: 0.0, s_mm: centre_s })
+}
+
+/// The fragment of seed 0 of `voronoi`: found on a coarse grid of the whole vessel, then
+/// meshed on a fine grid over its extent, with cells sized for `target_faces`.
+fn mesh_planned_fragment(profile: &VesselProfile, deformation: &Deformation, voronoi: &RoughVoronoi, plan: &FragmentPlan, target_faces: usize) -> Option<Shell> {
+    let length = profile.length_mm();
+    let (area, parameter_area) = surface_areas(profile);
+    let coarse_cell = (area / 100_000.0).sqrt().max(1.0);
+    let coarse = ParamGrid::covering(None, [0.0, length], length, coarse_cell, area / parameter_area);
+    let mut mask: Vec<bool> = voronoi.label_grid(&coarse, profile).iter().map(|&l| l == 0).collect();
+    if !clean_mask(&coarse, &mut mask, cell_at(&coarse, plan.theta, plan.s_mm)) {
+        return None;
+    }
+    let extent = CellSetExtent::measure(&coarse, &mask, profile);
+
+    // Faces ~ 4 per cell + 2 per boundary edge: 4 A / h^2 + 2 P / h = target, solved for 1/h.
+    let target = target_faces.max(64) as f64;
+    let (a, p) = (extent.area_mm2, extent.perimeter_mm);
+    let inverse_cell = (-2.0 * p + (4.0 * p * p + 16.0 * a * target).sqrt()) / (8.0 * a);
+    let cell = 1.0 / inverse_cell;
+    let margin_s = WINDOW_MARGIN_CELLS * coarse.ds;
+    let margin_theta = WINDOW_MARGIN_CELLS * coarse.dtheta;
+    let theta_range = extent.theta_range.map(|[low, high]| [low - margin_theta, high + margin_theta]);
+    let s_range = [extent.s_range[0] - margin_s, extent.s_range[1] + margin_s];
+    let fine = ParamGrid::covering(theta_range, s_range, length, cell, extent.mean_radius_mm);
+    let mut mask: Vec<bool> = voronoi.label_grid(&fine, profile).iter().map(|&l| l == 0).collect();
+    if !clean_mask(&fine, &mut mask, cell_at(&fine, plan.theta, plan.s_mm)) {
+        return None;
+    }
+    if !fine.periodic {
+        let touches_side = (0..fine.rows).any(|row| mask[row * fine.columns] || mask[row * fine.columns + fine.columns - 1]);
+        if touches_side {
+            return None;
+        }
+    }
+    Some(build_shell(&fine, &mask, profile, deformation))
+}
+
+/// Area, outline and angular and arc-length extent of a set of cells.
+struct CellSetExtent {
+    area_mm2: f64,
+    perimeter_mm: f64,
+    /// Angular interval (radians, low < high, not wrapped), `None` when all round.
+    theta_range: Option<[f64; 2]>,
+    s_range: [f64; 2],
+    /// Mean radius over the parameter area (area / parameter area).
+    mean_radius_mm: f64,
+}
+
+impl CellSetExtent {
+    fn measure(grid: &ParamGrid, mask: &[bool], profile: &VesselProfile) -> Self {
+        let (mut area, mut parameter_area, mut perimeter) = (0.0, 0.0, 0.0);
+        let (mut low_row, mut high_row) = (usize::MAX, 0);
+        let mut occupied_columns = vec![false; grid.columns];
+        for row in 0..grid.rows {
+            let s = grid.cell_centre(0, row).1;
+            let radius = profile.mid_radius_mm(s);
+            for column in 0..grid.columns {
+                if !mask[row * grid.columns + column] {
+                    continue;
+                }
+                area += radius * grid.dtheta * grid.ds;
+                parameter_area += grid.dtheta * grid.ds;
+                low_row = low_row.min(row);
+                high_row = high_row.max(row);
+                occupied_columns[column] = true;
+                let left = mask[row * grid.columns + (column + grid.columns - 1) % grid.columns];
+                let right = mask[row * grid.columns + (column + 1) % grid.columns];
+                let below = row > 0 && mask[(row - 1) * grid.columns + column];
+                let above = row + 1 < grid.rows && mask[(row + 1) * grid.columns + column];
+                perimeter += (!left as u8 + !right as u8) as f64 * grid.ds + (!below as u8 + !above as u8) as f64 * radius * grid.dtheta;
+            }
+        }
+        // The largest run of empty columns (circularly) is where the fragment is not.
+        let (mut best_gap, mut best_end) = (0, 0);
+        let mut run = 0;
+        for k in 0..2 * grid.columns {
+            if occupied_columns[k % grid.columns] {
+                run = 0;
+            } else {
+                run += 1;
+                if run > best_gap && run <= grid.columns {
+                    best_gap = run;
+                    best_end = k;
+                }
+            }
+        }
+        let theta_range = if best_gap == 0 {
+            None
+        } else {
+            // Occupied columns run from just after the gap to just before it.
+            let first = (best_end + 1) % grid.columns;
+            let count = grid.columns - best_gap;
+            let low = grid.theta0 + first as f64 * grid.dtheta;
+            Some([low, low + count as f64 * grid.dtheta])
+        };
+        CellSetExtent {
+            area_mm2: area.max(1e-6),
+            perimeter_mm: perimeter,
+            theta_range,
+            s_range: [grid.s0 + low_row as f64 * grid.ds, grid.s0 + (high_row + 1) as f64 * grid.ds],
+            mean_radius_mm: area / parameter_area.max(1e-12),
+        }
+    }
+}
+
+/// The surface area of the mid-wall surface and its area in the `(theta, s)` plane.
+fn surface_areas(profile: &VesselProfile) -> (f64, f64) {
+    let length = profile.length_mm();
+    let steps = (length / 0.5).ceil() as usize;
+    let ds = length / steps as f64;
+    let area: f64 = (0..steps).map(|k| profile.mid_radius_mm((k as f64 + 0.5) * ds)).sum::<f64>() * ds * std::f64::consts::TAU;
+    (area, std::f64::consts::TAU * length)
+}
+
+/// The index of the cell containing `(theta, s_mm)`, if inside the grid.
+fn cell_at(grid: &ParamGrid, theta: f64, s_mm: f64) -> Option<usize> {
+    let row = ((s_mm - grid.s0) / grid.ds).floor();
+    let mut column = ((theta - grid.theta0) / grid.dtheta).floor();
+    if grid.periodic {
+        column = column.rem_euclid(grid.columns as f64);
+    }
+    if row < 0.0 || row >= grid.rows as f64 || column < 0.0 || column >= grid.columns as f64 {
+        return None;
+    }
+    Some(row as usize * grid.columns + column as usize)
+}
+
+/// The part a shell is, from the arc-length band its cells cover and whether it has rim.
+fn classify(profile: &VesselProfile, shell: &Shell) -> SherdPart {
+    let edge = profile.base_edge_s_mm();
+    let has_base = shell.s_range_mm[0] < edge;
+    match (shell.has_rim, has_base) {
+        (true, true) => SherdPart::RimToBase,
+        (true, false) => SherdPart::Rim,
+        (false, true) if shell.s_range_mm[1] <= edge => SherdPart::Flat,
+        (false, true) => SherdPart::Base,
+        (false, false) => SherdPart::Body,
+    }
+}
+
+fn vessel_truth(profile: &VesselProfile, deformation: &Deformation) -> VesselTruth {
+    VesselTruth {
+        shape: profile.shape,
+        rim_radius_mm: profile.rim_radius_mm(),
+        base_radius_mm: profile.base_radius_mm(),
+        height_mm: profile.height_mm(),
+        wall_thickness_mm: profile.wall_thickness_mm,
+        deformation: deformation.clone(),
+    }
+}
+
+/// Noise, motion, normals and truth for a shell.
+#[allow(clippy::too_many_arguments)]
+fn finish(
+    seed: u64,
+    shell: Shell,
+    profile: &VesselProfile,
+    deformation: &Deformation,
+    part: SherdPart,
+    hard_case: Option<HardCase>,
+    noise_mm: f64,
+    noise_seed: u64,
+    motion_seed: Option<u64>,
+) -> SynthSherd {
+    let Shell { positions, triangles, vertex_kinds, face_kinds, .. } = shell;
+    let mut mesh = Mesh::new(positions, triangles);
+    motion::add_noise(&mut mesh.positions, noise_mm, noise_seed);
+    let isometry = match motion_seed {
+        Some(motion_seed) => {
+            let centroid = mesh.centroid().unwrap_or_else(Point::origin);
+            motion::random_motion(&mut ChaCha8Rng::seed_from_u64(motion_seed), &centroid, 30.0)
+        }
+        None => nalgebra::Isometry3::identity(),
+    };
+    mesh.transform(&isometry);
+    mesh.normals = Some(motion::area_weighted_normals(&mesh));
+    let axis = Axis::new(isometry * Point::origin(), isometry * Vector::z());
+    let heights = mesh.positions.iter().map(|p| axis.height_of(p));
+    let (low, high) = heights.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), h| (lo.min(h), hi.max(h)));
+    let truth = GroundTruth {
+        axis,
+        rim_radius_mm: matches!(part, SherdPart::Rim | SherdPart::RimToBase).then(|| profile.rim_radius_mm()),
+        base_radius_mm: matches!(part, SherdPart::Base | SherdPart::RimToBase).then(|| profile.base_radius_mm()),
+        sector_angle_deg: truth::sector_angle_deg(&mesh.positions, &axis),
+        height_mm: (high - low).max(0.0),
+        profile: profile.skin_polyline(1.0, PROFILE_STEP_MM),
+        inner_profile: profile.skin_polyline(-1.0, PROFILE_STEP_MM),
+        part,
+        hard_case,
+        noise_mm,
+        deformation_bound_mm: deformation.bound_mm(profile.max_radius_mm()),
+        vessel: vessel_truth(profile, deformation),
+        motion: RigidMotion::from_isometry(&isometry),
+        seed,
+    };
+    SynthSherd { mesh, truth, vertex_kinds, face_kinds }
+}

@@ -14,6 +14,7 @@ mod ply_write;
 mod points;
 mod stl;
 mod texture;
+mod units;
 
 use std::path::Path;
 
@@ -24,6 +25,7 @@ use crate::{Error, Result};
 
 pub use ply_read::{read_ply_from, read_ply_from_with_report};
 pub use ply_write::{PlyEncoding, write_ply, write_ply_to};
+pub use units::{LengthUnit, UnitsGuess, guess_units};
 
 /// What a reader did besides producing the mesh: the format it recognised and the
 /// warnings about what it skipped or could not load.

@@ -51,12 +51,12 @@ impl Parser<'_> {
     }
 
     /// Resolves an OBJ index (1-based, or negative from the end of what is defined so far).
-    fn resolve(&self, word: &[u8], defined: usize, what: &str) -> Result<u32> {
+    fn resolve(&self, word: &[u8], defined: usize, what: &str, plural: &str) -> Result<u32> {
         let value = std::str::from_utf8(word).ok().and_then(|w| w.parse::<i64>().ok());
         let value = value.ok_or_else(|| self.error(format!("{what} index {} is not an integer", show_token(word))))?;
         let index = if value > 0 { value - 1 } else { defined as i64 + value };
         if value == 0 || index < 0 || index >= defined as i64 {
-            return Err(self.error(format!("{what} index {value} is out of range: {defined} {what}s are defined before this line")));
+            return Err(self.error(format!("{what} index {value} is out of range: {defined} {plural} defined before this line")));
         }
         Ok(index as u32)
     }
@@ -65,13 +65,13 @@ impl Parser<'_> {
         let mut corners = Vec::with_capacity(words.len());
         for word in words {
             let mut parts = word.split(|&b| b == b'/');
-            let vertex = self.resolve(parts.next().unwrap_or_default(), self.positions.len(), "vertex")?;
+            let vertex = self.resolve(parts.next().unwrap_or_default(), self.positions.len(), "vertex", "vertices")?;
             let uv = match parts.next() {
-                Some(part) if !part.is_empty() => Some(self.resolve(part, self.uvs.len(), "texture coordinate")?),
+                Some(part) if !part.is_empty() => Some(self.resolve(part, self.uvs.len(), "texture coordinate", "texture coordinates")?),
                 _ => None,
             };
             let normal = match parts.next() {
-                Some(part) if !part.is_empty() => Some(self.resolve(part, self.normals.len(), "normal")?),
+                Some(part) if !part.is_empty() => Some(self.resolve(part, self.normals.len(), "normal", "normals")?),
                 _ => None,
             };
             corners.push(Corner { vertex, uv, normal });

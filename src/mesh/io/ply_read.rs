@@ -258,8 +258,15 @@ trait Body {
     fn float(&mut self, kind: ScalarType) -> std::result::Result<f64, Fault>;
     fn integer(&mut self, kind: ScalarType) -> std::result::Result<i64, Fault>;
     fn skip(&mut self, kind: ScalarType) -> std::result::Result<(), Fault>;
+    /// A cheap token for the current place (computed per value), turned into words by
+    /// [`Body::location_at`] only when an error needs it.
+    fn mark(&self) -> usize;
+    /// "byte N" or "line N" for a mark.
+    fn location_at(&self, mark: usize) -> String;
     /// "byte N" or "line N": where the next value is.
-    fn location(&self) -> String;
+    fn location(&self) -> String {
+        self.location_at(self.mark())
+    }
     /// Where the current record (element instance) began.
     fn record_location(&self) -> String;
     /// Whether `count` more values of `kind` can possibly fit in the rest of the file.
@@ -336,8 +343,12 @@ impl Body for BinaryBody<'_> {
         Ok(())
     }
 
-    fn location(&self) -> String {
-        format!("byte {}", self.base + self.position)
+    fn mark(&self) -> usize {
+        self.position
+    }
+
+    fn location_at(&self, mark: usize) -> String {
+        format!("byte {}", self.base + mark)
     }
 
     fn record_location(&self) -> String {
@@ -418,7 +429,12 @@ impl Body for AsciiBody<'_> {
         self.token().map(|_| ())
     }
 
-    fn location(&self) -> String {
+    fn mark(&self) -> usize {
+        self.position
+    }
+
+    /// Ascii records are one line each: the record's line says where.
+    fn location_at(&self, _mark: usize) -> String {
         format!("line {}", self.record_line.unwrap_or(self.line))
     }
 
@@ -569,10 +585,9 @@ impl Builder<'_> {
             let mut values = [f64::NAN; SLOT_COUNT];
             values[VertexSlot::Alpha as usize] = colour_types[3].max_value();
             for (property, &slot) in element.properties.iter().zip(&slots) {
-                let at = body.location();
                 match property.kind {
                     PropertyType::Scalar(kind) => {
-                        let value = body.float(kind).map_err(|f| body_error(self.name, at, element, index, property, f.message(kind)))?;
+                        let value = body.float(kind).map_err(|f| body_error(self.name, body.location(), element, index, property, f.message(kind)))?;
                         if slot != VertexSlot::Skip {
                             values[slot as usize] = value;
                         }
@@ -580,13 +595,12 @@ impl Builder<'_> {
                     PropertyType::List { count, item } => skip_list(body, count, item).map_err(|(at, message)| body_error(self.name, at, element, index, property, message))?,
                 }
             }
-            let record = body.record_location();
             body.end_record().map_err(|f| body_error(self.name, body.location(), element, index, element.properties.last().expect("a vertex has properties"), f.message(ScalarType::F32)))?;
             let position = Point::new(values[0], values[1], values[2]);
             if let Some(axis) = (0..3).find(|&axis| !position[axis].is_finite()) {
                 return Err(Error::parse(
                     self.name,
-                    format!("{record} ({} {index} of {})", element.name, element.count),
+                    format!("{} ({} {index} of {})", body.record_location(), element.name, element.count),
                     format!("coordinate {} is {} (vertex at ({}, {}, {}))", ["x", "y", "z"][axis], position[axis], position.x, position.y, position.z),
                 ));
             }
@@ -662,47 +676,46 @@ impl Builder<'_> {
             for (at, property) in element.properties.iter().enumerate() {
                 let fail = |location: String, message: String| body_error(self.name, location, element, index, property, message);
                 if at == indices_at {
-                    let location = body.location();
-                    let n = body.integer(index_count_type).map_err(|f| fail(location.clone(), f.message(index_count_type)))?;
+                    let mark = body.mark();
+                    let n = body.integer(index_count_type).map_err(|f| fail(body.location_at(mark), f.message(index_count_type)))?;
                     if n < 0 || !body.can_hold(n as u64, index_type) {
-                        return Err(fail(location, format!("list length {n} is impossible here (negative, or more than the rest of the file can hold)")));
+                        return Err(fail(body.location_at(mark), format!("list length {n} is impossible here (negative, or more than the rest of the file can hold)")));
                     }
                     for _ in 0..n {
-                        let location = body.location();
-                        let vertex = body.integer(index_type).map_err(|f| fail(location.clone(), f.message(index_type)))?;
+                        let mark = body.mark();
+                        let vertex = body.integer(index_type).map_err(|f| fail(body.location_at(mark), f.message(index_type)))?;
                         if vertex < 0 || vertex as u64 >= vertex_count {
-                            return Err(fail(location, format!("vertex index {vertex} is out of range: the file has {vertex_count} vertices")));
+                            return Err(fail(body.location_at(mark), format!("vertex index {vertex} is out of range: the file has {vertex_count} vertices")));
                         }
                         corners.push(vertex as u32);
                     }
                 } else if Some(at) == texcoords_at {
                     let PropertyType::List { count, item } = property.kind else { unreachable!("texcoord is a list") };
-                    let location = body.location();
-                    let n = body.integer(count).map_err(|f| fail(location.clone(), f.message(count)))?;
+                    let mark = body.mark();
+                    let n = body.integer(count).map_err(|f| fail(body.location_at(mark), f.message(count)))?;
                     if n < 0 || !body.can_hold(n as u64, item) {
-                        return Err(fail(location, format!("list length {n} is impossible here (negative, or more than the rest of the file can hold)")));
+                        return Err(fail(body.location_at(mark), format!("list length {n} is impossible here (negative, or more than the rest of the file can hold)")));
                     }
                     for _ in 0..n {
-                        let location = body.location();
-                        face_uvs.push(body.float(item).map_err(|f| fail(location, f.message(item)))? as f32);
+                        let mark = body.mark();
+                        face_uvs.push(body.float(item).map_err(|f| fail(body.location_at(mark), f.message(item)))? as f32);
                     }
                 } else {
                     match property.kind {
                         PropertyType::Scalar(kind) => {
-                            let location = body.location();
-                            body.skip(kind).map_err(|f| fail(location, f.message(kind)))?;
+                            let mark = body.mark();
+                            body.skip(kind).map_err(|f| fail(body.location_at(mark), f.message(kind)))?;
                         }
                         PropertyType::List { count, item } => skip_list(body, count, item).map_err(|(location, message)| fail(location, message))?,
                     }
                 }
             }
-            let record = body.record_location();
             body.end_record().map_err(|f| body_error(self.name, body.location(), element, index, element.properties.last().expect("a face has properties"), f.message(index_type)))?;
             if let Some(corner_uvs) = &mut corner_uvs {
                 if face_uvs.len() != 2 * corners.len() {
                     return Err(Error::parse(
                         self.name,
-                        format!("{record} ({} {index} of {})", element.name, element.count),
+                        format!("{} ({} {index} of {})", body.record_location(), element.name, element.count),
                         format!("texcoord has {} values for a face of {} corners (expected {})", face_uvs.len(), corners.len(), 2 * corners.len()),
                     ));
                 }
@@ -725,26 +738,30 @@ impl Builder<'_> {
 
 /// Skips one list value; returns where and why it failed.
 fn skip_list<B: Body>(body: &mut B, count: ScalarType, item: ScalarType) -> std::result::Result<(), (String, String)> {
-    let location = body.location();
-    let n = body.integer(count).map_err(|f| (location.clone(), f.message(count)))?;
+    let mark = body.mark();
+    let n = body.integer(count).map_err(|f| (body.location_at(mark), f.message(count)))?;
     if n < 0 || !body.can_hold(n as u64, item) {
-        return Err((location, format!("list length {n} is impossible here (negative, or more than the rest of the file can hold)")));
+        return Err((body.location_at(mark), format!("list length {n} is impossible here (negative, or more than the rest of the file can hold)")));
     }
     for _ in 0..n {
-        let location = body.location();
-        body.skip(item).map_err(|f| (location, f.message(item)))?;
+        let mark = body.mark();
+        body.skip(item).map_err(|f| (body.location_at(mark), f.message(item)))?;
     }
     Ok(())
 }
 
 fn skip_element<B: Body>(name: &str, body: &mut B, element: &Element) -> Result<()> {
+    if element.properties.is_empty() {
+        // Nothing to read, however large the count: never loop over a lying count.
+        return Ok(());
+    }
     for index in 0..element.count {
         body.begin_record();
         for property in &element.properties {
             match property.kind {
                 PropertyType::Scalar(kind) => {
-                    let location = body.location();
-                    body.skip(kind).map_err(|f| body_error(name, location, element, index, property, f.message(kind)))?;
+                    let mark = body.mark();
+                    body.skip(kind).map_err(|f| body_error(name, body.location_at(mark), element, index, property, f.message(kind)))?;
                 }
                 PropertyType::List { count, item } => {
                     skip_list(body, count, item).map_err(|(location, message)| body_error(name, location, element, index, property, message))?
@@ -793,9 +810,6 @@ pub(super) fn parse_ply(bytes: &[u8], name: &str, folder: Option<&Path>) -> Resu
     let Some(vertex_element) = header.elements.iter().find(|e| e.name == "vertex") else {
         return Err(Error::parse(name, "header", "the header declares no vertex element"));
     };
-    if vertex_element.count > u32::MAX as u64 {
-        return Err(Error::parse(name, format!("header line {}", vertex_element.line), format!("{} vertices declared: more than the 4294967295 a mesh can index", vertex_element.count)));
-    }
     // Refuse counts the file cannot hold before any allocation.
     let mut needed: u128 = 0;
     for element in &header.elements {
@@ -810,6 +824,9 @@ pub(super) fn parse_ply(bytes: &[u8], name: &str, folder: Option<&Path>) -> Resu
                 ),
             ));
         }
+    }
+    if vertex_element.count > u32::MAX as u64 {
+        return Err(Error::parse(name, format!("header line {}", vertex_element.line), format!("{} vertices declared: more than the 4294967295 a mesh can index", vertex_element.count)));
     }
     let format = match header.encoding {
         Encoding::Ascii => "ply ascii",

@@ -1,0 +1,38 @@
+"""sherd: orient 3D scans of archaeological pottery sherds and draw them.
+
+A ctypes binding of the libsherd C ABI (``include/sherd.h``), numpy arrays in and out,
+exceptions from status codes. The library is found through ``SHERD_LIBRARY``, next to
+this package, or on the system's library path.
+"""
+
+from ._library import ABI_VERSION, lib
+from .axis import Axis, oriented_transform
+from .errors import (
+    BufferTooSmallError,
+    DegenerateGeometryError,
+    InvalidArgumentError,
+    NeedsManualOrientationError,
+    NotAvailableError,
+    NotConvergedError,
+    NullPointerError,
+    PanicError,
+    ParseError,
+    SherdError,
+    SherdIOError,
+    Status,
+    last_error_message,
+)
+from .mesh import Attribute, Mesh
+
+if lib.sherd_abi_version() != ABI_VERSION:
+    raise ImportError(
+        f"libsherd has ABI version {lib.sherd_abi_version()}, this binding expects {ABI_VERSION}")
+
+#: The loaded library's version string.
+__version__ = lib.sherd_version().decode()
+
+__all__ = [
+    "Attribute", "Axis", "BufferTooSmallError", "DegenerateGeometryError", "InvalidArgumentError", "Mesh",
+    "NeedsManualOrientationError", "NotAvailableError", "NotConvergedError", "NullPointerError", "PanicError",
+    "ParseError", "SherdError", "SherdIOError", "Status", "last_error_message", "oriented_transform",
+]

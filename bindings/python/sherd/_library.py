@@ -1,0 +1,107 @@
+"""Loading libsherd and declaring the C signatures (ctypes: Blender's Python has no compiler).
+
+The library is looked for, in order: at the path in the ``SHERD_LIBRARY`` environment
+variable; next to this package (``sherd/libsherd.so``, as a wheel ships it); on the
+system's library path.
+"""
+
+import ctypes
+import ctypes.util
+import os
+import sys
+from pathlib import Path
+
+#: The ABI version of the header this binding was written against (``SHERD_ABI_VERSION``).
+ABI_VERSION = 1
+
+_NAMES = {"linux": "libsherd.so", "darwin": "libsherd.dylib", "win32": "sherd.dll"}
+
+
+def _candidates():
+    explicit = os.environ.get("SHERD_LIBRARY")
+    if explicit:
+        yield Path(explicit)
+        return
+    yield Path(__file__).resolve().parent / _NAMES.get(sys.platform, "libsherd.so")
+    found = ctypes.util.find_library("sherd")
+    if found:
+        yield Path(found)
+
+
+def _load():
+    tried = []
+    for path in _candidates():
+        tried.append(str(path))
+        if path.is_absolute() and not path.exists():
+            continue
+        try:
+            return ctypes.CDLL(str(path))
+        except OSError as error:
+            tried[-1] += f" ({error})"
+    raise ImportError(
+        "libsherd not found; set SHERD_LIBRARY to the path of libsherd.so "
+        "(cargo build --release gives target/release/libsherd.so). Tried: " + "; ".join(tried)
+    )
+
+
+lib = _load()
+
+c_double_p = ctypes.POINTER(ctypes.c_double)
+c_float_p = ctypes.POINTER(ctypes.c_float)
+c_uint32_p = ctypes.POINTER(ctypes.c_uint32)
+c_uint8_p = ctypes.POINTER(ctypes.c_uint8)
+c_size_t_p = ctypes.POINTER(ctypes.c_size_t)
+
+
+class SherdMesh(ctypes.Structure):
+    """Opaque handle."""
+
+
+class SherdAxis(ctypes.Structure):
+    """Mirror of the C struct; ``size`` must be set to its size."""
+
+    _fields_ = [
+        ("size", ctypes.c_size_t),
+        ("point", ctypes.c_double * 3),
+        ("direction", ctypes.c_double * 3),
+    ]
+
+
+SherdMesh_p = ctypes.POINTER(SherdMesh)
+Status = ctypes.c_uint32
+
+
+def _declare(name, restype, *argtypes):
+    function = getattr(lib, name)
+    function.restype = restype
+    function.argtypes = list(argtypes)
+
+
+_declare("sherd_version", ctypes.c_char_p)
+_declare("sherd_abi_version", ctypes.c_uint32)
+_declare("sherd_status_name", ctypes.c_char_p, ctypes.c_uint32)
+_declare("sherd_last_error_message", ctypes.c_char_p)
+
+_declare("sherd_mesh_from_arrays", Status, c_double_p, ctypes.c_size_t, c_uint32_p, ctypes.c_size_t,
+         ctypes.POINTER(SherdMesh_p))
+_declare("sherd_mesh_from_arrays_f32", Status, c_float_p, ctypes.c_size_t, c_uint32_p, ctypes.c_size_t,
+         ctypes.POINTER(SherdMesh_p))
+_declare("sherd_mesh_clone", Status, SherdMesh_p, ctypes.POINTER(SherdMesh_p))
+_declare("sherd_mesh_free", None, SherdMesh_p)
+_declare("sherd_mesh_set_normals", Status, SherdMesh_p, c_double_p, ctypes.c_size_t)
+_declare("sherd_mesh_set_normals_f32", Status, SherdMesh_p, c_float_p, ctypes.c_size_t)
+_declare("sherd_mesh_set_colors", Status, SherdMesh_p, c_uint8_p, ctypes.c_size_t)
+_declare("sherd_mesh_set_corner_uvs", Status, SherdMesh_p, c_float_p, ctypes.c_size_t)
+_declare("sherd_mesh_vertex_count", Status, SherdMesh_p, c_size_t_p)
+_declare("sherd_mesh_face_count", Status, SherdMesh_p, c_size_t_p)
+_declare("sherd_mesh_attributes", Status, SherdMesh_p, c_uint32_p)
+_declare("sherd_mesh_copy_positions", Status, SherdMesh_p, c_double_p, ctypes.c_size_t)
+_declare("sherd_mesh_copy_positions_f32", Status, SherdMesh_p, c_float_p, ctypes.c_size_t)
+_declare("sherd_mesh_copy_triangles", Status, SherdMesh_p, c_uint32_p, ctypes.c_size_t)
+_declare("sherd_mesh_copy_normals", Status, SherdMesh_p, c_double_p, ctypes.c_size_t)
+_declare("sherd_mesh_copy_colors", Status, SherdMesh_p, c_uint8_p, ctypes.c_size_t)
+_declare("sherd_mesh_copy_corner_uvs", Status, SherdMesh_p, c_float_p, ctypes.c_size_t)
+_declare("sherd_mesh_copy_quality", Status, SherdMesh_p, c_float_p, ctypes.c_size_t)
+
+_declare("sherd_axis_oriented_transform", Status, ctypes.POINTER(SherdAxis), c_double_p, c_double_p)
+_declare("sherd_mesh_oriented_transform", Status, SherdMesh_p, ctypes.POINTER(SherdAxis), c_double_p)

@@ -1,0 +1,107 @@
+"""Status codes of the C ABI and the exceptions they become."""
+
+import enum
+
+from ._library import lib
+
+
+class Status(enum.IntEnum):
+    """``SHERD_STATUS_*`` (tests check these against ``sherd.h``)."""
+
+    OK = 0
+    INVALID_ARGUMENT = 1
+    NULL_POINTER = 2
+    BUFFER_TOO_SMALL = 3
+    NOT_AVAILABLE = 4
+    IO = 5
+    PARSE = 6
+    DEGENERATE_GEOMETRY = 7
+    NOT_CONVERGED = 8
+    NEEDS_MANUAL_ORIENTATION = 9
+    PANIC = 10
+
+
+class SherdError(Exception):
+    """A call into libsherd failed. ``status`` is the :class:`Status`, ``message`` the
+    library's message (naming the function, the argument or element and the value)."""
+
+    status = None
+
+    def __init__(self, status, message):
+        super().__init__(message)
+        self.status = status
+        self.message = message
+
+
+class InvalidArgumentError(SherdError, ValueError):
+    """An argument had a value the function does not accept."""
+
+
+class NullPointerError(SherdError, ValueError):
+    """A required pointer was NULL (a bug in the binding or the caller)."""
+
+
+class BufferTooSmallError(SherdError):
+    """An output buffer was too small."""
+
+
+class NotAvailableError(SherdError):
+    """The mesh has no such attribute."""
+
+
+class SherdIOError(SherdError, OSError):
+    """A file could not be opened, read or written."""
+
+
+class ParseError(SherdError, ValueError):
+    """A file's content is malformed."""
+
+
+class DegenerateGeometryError(SherdError):
+    """The geometry cannot support the operation."""
+
+
+class NotConvergedError(SherdError):
+    """An optimisation stopped at its bound without meeting its tolerance."""
+
+
+class NeedsManualOrientationError(SherdError):
+    """The data do not determine an axis: give three points."""
+
+
+class PanicError(SherdError):
+    """A bug inside libsherd, caught at the boundary; please report it."""
+
+
+_EXCEPTIONS = {
+    Status.INVALID_ARGUMENT: InvalidArgumentError,
+    Status.NULL_POINTER: NullPointerError,
+    Status.BUFFER_TOO_SMALL: BufferTooSmallError,
+    Status.NOT_AVAILABLE: NotAvailableError,
+    Status.IO: SherdIOError,
+    Status.PARSE: ParseError,
+    Status.DEGENERATE_GEOMETRY: DegenerateGeometryError,
+    Status.NOT_CONVERGED: NotConvergedError,
+    Status.NEEDS_MANUAL_ORIENTATION: NeedsManualOrientationError,
+    Status.PANIC: PanicError,
+}
+
+
+def last_error_message():
+    """This thread's last error message from the library."""
+    return lib.sherd_last_error_message().decode("utf-8", "replace")
+
+
+def error_for(status):
+    """The exception for a non-OK ``status`` with the thread's message."""
+    try:
+        status = Status(status)
+    except ValueError:
+        return SherdError(status, f"unknown status {status}: {last_error_message()}")
+    return _EXCEPTIONS.get(status, SherdError)(status, last_error_message())
+
+
+def check(status):
+    """Raises the exception for ``status`` unless it is OK."""
+    if status != Status.OK:
+        raise error_for(status)

@@ -1,0 +1,107 @@
+//! `sherd info SCAN [--json]`: what a scan file holds, before any processing.
+
+use std::path::PathBuf;
+
+use serde::Serialize;
+use sherd::Result;
+use sherd::mesh::io::{ReadReport, UnitsGuess, guess_units, read_mesh_with_report};
+
+/// Arguments of `sherd info`.
+#[derive(clap::Args)]
+pub struct InfoArgs {
+    /// The scan: .ply, .obj, .stl, .xyz or .pts.
+    pub scan: PathBuf,
+    /// Print one JSON object on stdout instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Everything `sherd info` reports, in the JSON form scripts read.
+#[derive(Serialize)]
+struct Info {
+    file: String,
+    format: String,
+    vertex_count: usize,
+    face_count: usize,
+    point_cloud: bool,
+    bounding_box: Option<BoundingBox>,
+    units_guess: Option<UnitsGuess>,
+    has_normals: bool,
+    has_colours: bool,
+    has_quality: bool,
+    has_texture_coordinates: bool,
+    /// `[width, height]` of the loaded texture image.
+    texture_size: Option<[u32; 2]>,
+    read: ReadReport,
+}
+
+#[derive(Serialize)]
+struct BoundingBox {
+    min: [f64; 3],
+    max: [f64; 3],
+    size: [f64; 3],
+}
+
+pub fn run(arguments: &InfoArgs) -> Result<()> {
+    let (mesh, read) = read_mesh_with_report(&arguments.scan)?;
+    let bounding_box = mesh.bounding_box().map(|(low, high)| BoundingBox {
+        min: low.coords.into(),
+        max: high.coords.into(),
+        size: (high - low).into(),
+    });
+    let info = Info {
+        file: arguments.scan.display().to_string(),
+        format: read.format.clone(),
+        vertex_count: mesh.vertex_count(),
+        face_count: mesh.face_count(),
+        point_cloud: mesh.is_point_cloud(),
+        bounding_box,
+        units_guess: guess_units(&mesh),
+        has_normals: mesh.normals.is_some(),
+        has_colours: mesh.colors.is_some(),
+        has_quality: mesh.quality.is_some(),
+        has_texture_coordinates: mesh.corner_uvs.is_some(),
+        texture_size: mesh.texture.as_ref().map(|t| [t.width, t.height]),
+        read,
+    };
+    if arguments.json {
+        println!("{}", serde_json::to_string_pretty(&info).expect("the report is plain data"));
+    } else {
+        print!("{}", text(&info));
+    }
+    Ok(())
+}
+
+fn yes_no(value: bool) -> &'static str {
+    if value { "yes" } else { "no" }
+}
+
+fn text(info: &Info) -> String {
+    let mut out = format!("file:       {} ({})\n", info.file, info.format);
+    out += &format!("vertices:   {}\n", info.vertex_count);
+    out += &format!("faces:      {}{}\n", info.face_count, if info.point_cloud { " (point cloud)" } else { "" });
+    if let Some(bounds) = &info.bounding_box {
+        let triple = |v: [f64; 3]| format!("({:.3}, {:.3}, {:.3})", v[0], v[1], v[2]);
+        out += &format!("bounds:     {} to {}\n", triple(bounds.min), triple(bounds.max));
+        out += &format!("size:       {:.3} x {:.3} x {:.3}\n", bounds.size[0], bounds.size[1], bounds.size[2]);
+    }
+    if let Some(units) = &info.units_guess {
+        out += &format!("units:      {} (guess; {})\n", units.unit.symbol(), units.reason);
+    }
+    out += &format!("normals:    {}\n", yes_no(info.has_normals));
+    out += &format!("colours:    {}\n", yes_no(info.has_colours));
+    out += &format!("quality:    {}\n", yes_no(info.has_quality));
+    let texture = match info.texture_size {
+        Some([w, h]) => format!("yes ({w} x {h})"),
+        None if info.has_texture_coordinates => "coordinates only (image not loaded)".into(),
+        None => "no".into(),
+    };
+    out += &format!("texture:    {texture}\n");
+    if info.read.polygons_triangulated > 0 {
+        out += &format!("polygons:   {} triangulated\n", info.read.polygons_triangulated);
+    }
+    for warning in &info.read.warnings {
+        out += &format!("warning:    {warning}\n");
+    }
+    out
+}

@@ -1,0 +1,150 @@
+//! Honest failure: whether the normals determine the axis, decided from the data (the
+//! spread of the normals, the conditioning of the line complex, the precision of the fit,
+//! its residuals and its competitors), never from the size of the sherd alone. The
+//! thresholds are calibrated on the synthetic corpus (`examples/orient_accuracy.rs`
+//! prints the figures they were read from).
+
+use nalgebra::{Matrix3, SymmetricEigen};
+use serde::{Deserialize, Serialize};
+
+use super::halir::HalirFit;
+use super::line_complex::CenteredLines;
+use super::OrientReport;
+
+/// Whether an orientation can be used.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Verdict {
+    /// The axis is determined by the data.
+    Oriented,
+    /// The data do not determine an axis: give three points on a horizontal feature.
+    NeedsManualOrientation {
+        /// Why, in the archaeologist's terms, with the figure that decided.
+        reason: String,
+    },
+}
+
+impl Verdict {
+    /// True for [`Verdict::Oriented`].
+    pub fn is_oriented(&self) -> bool {
+        matches!(self, Verdict::Oriented)
+    }
+}
+
+/// The limits beyond which an orientation is flagged.
+#[derive(Clone, Copy, Debug)]
+pub struct VerdictThresholds {
+    /// Fewest lines on the surface of revolution.
+    pub min_lines: usize,
+    /// Smallest second/first eigenvalue of the normals' scatter (flat piece below).
+    pub min_normal_spread: f64,
+    /// Largest `λ1/λ2` of the line complex (near-spherical piece above).
+    pub max_concurrency_ratio: f64,
+    /// Largest calibrated direction uncertainty, degrees.
+    pub max_angle_uncertainty_deg: f64,
+    /// Largest calibrated position uncertainty, millimetres.
+    pub max_position_uncertainty_mm: f64,
+    /// Largest typical angle by which the normals miss the axis, degrees.
+    pub max_residual_angle_deg: f64,
+    /// Smallest fraction of lines the M-step keeps.
+    pub min_inlier_fraction: f64,
+    /// A competing axis more than 10 degrees away whose cost is within this ratio of the
+    /// best makes the answer ambiguous.
+    pub competitor_cost_ratio: f64,
+    /// Factor from the fit's standard errors (which ignore the correlation of neighbouring
+    /// normals) to the calibrated uncertainties.
+    pub angle_sigma_factor: f64,
+}
+
+impl Default for VerdictThresholds {
+    fn default() -> Self {
+        VerdictThresholds {
+            min_lines: 50,
+            min_normal_spread: 0.02,
+            max_concurrency_ratio: 0.6,
+            max_angle_uncertainty_deg: 3.0,
+            max_position_uncertainty_mm: 3.0,
+            max_residual_angle_deg: 8.0,
+            min_inlier_fraction: 0.3,
+            competitor_cost_ratio: 1.1,
+            angle_sigma_factor: 1.0,
+        }
+    }
+}
+
+/// Second over first eigenvalue of the weighted scatter `Σ w n nᵀ` of the normals: 0 when
+/// they are all parallel (a flat base), about 1 on a cylinder or cone.
+pub fn normal_spread(lines: &CenteredLines) -> f64 {
+    let mut scatter = Matrix3::zeros();
+    for (n, w) in lines.directions.iter().zip(&lines.weights) {
+        scatter += n * n.transpose() * *w;
+    }
+    let mut values: Vec<f64> = SymmetricEigen::new(scatter).eigenvalues.iter().copied().collect();
+    values.sort_by(|a, b| b.total_cmp(a));
+    values[1] / values[0].max(1e-300)
+}
+
+/// The best refined candidate more than 10 degrees from the winner: (angle in degrees,
+/// its cost over the winner's).
+pub fn best_competitor(fit: &HalirFit) -> Option<(f64, f64)> {
+    let best_cost = fit.cost.max(1e-300);
+    fit.alternatives
+        .iter()
+        .map(|(direction, cost)| (direction.dot(&fit.direction).abs().min(1.0).acos().to_degrees(), cost / best_cost))
+        .filter(|(angle, _)| *angle > 10.0)
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+}
+
+/// The verdict from the report's figures.
+pub fn judge(
+    report: &OrientReport,
+    angle_uncertainty_deg: f64,
+    position_uncertainty_mm: f64,
+    limits: &VerdictThresholds,
+) -> Verdict {
+    let flag = |reason: String| Verdict::NeedsManualOrientation { reason };
+    if report.normal_spread < limits.min_normal_spread {
+        return flag(format!(
+            "the normals are nearly parallel (spread {:.3} < {:.3}): a flat piece does not fix the axis position",
+            report.normal_spread, limits.min_normal_spread
+        ));
+    }
+    if report.concurrency_ratio > limits.max_concurrency_ratio {
+        return flag(format!(
+            "the normal lines nearly meet in one point (ratio {:.2} > {:.2}): a near-spherical piece fits many axes",
+            report.concurrency_ratio, limits.max_concurrency_ratio
+        ));
+    }
+    if report.inlier_fraction < limits.min_inlier_fraction {
+        return flag(format!(
+            "only {:.0}% of the normal lines agree on an axis (at least {:.0}% needed)",
+            100.0 * report.inlier_fraction,
+            100.0 * limits.min_inlier_fraction
+        ));
+    }
+    if !(report.residual_angle_deg <= limits.max_residual_angle_deg) {
+        return flag(format!(
+            "the normals miss the axis by {:.1} deg typically ({:.2} mm at radius {:.1} mm; at most {:.1} deg accepted)",
+            report.residual_angle_deg, report.residual_scale_mm, report.median_radius_mm, limits.max_residual_angle_deg
+        ));
+    }
+    if !(angle_uncertainty_deg <= limits.max_angle_uncertainty_deg) {
+        return flag(format!(
+            "the axis direction is uncertain: +-{:.1} deg (at most {:.1} deg accepted)",
+            angle_uncertainty_deg, limits.max_angle_uncertainty_deg
+        ));
+    }
+    if !(position_uncertainty_mm <= limits.max_position_uncertainty_mm) {
+        return flag(format!(
+            "the axis position is uncertain: +-{:.1} mm (at most {:.1} mm accepted)",
+            position_uncertainty_mm, limits.max_position_uncertainty_mm
+        ));
+    }
+    if let Some((angle, ratio)) = report.competitor {
+        if ratio < limits.competitor_cost_ratio {
+            return flag(format!(
+                "two axes {angle:.0} deg apart fit almost equally well (cost ratio {ratio:.2})"
+            ));
+        }
+    }
+    Verdict::Oriented
+}

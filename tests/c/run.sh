@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# Builds the C (and C++) consumers of the sherd C ABI against include/sherd.h and the
+# shared and the static library, found through the generated sherd.pc, and runs each
+# under valgrind: any error or leak fails.
+#
+#   bash tests/c/run.sh                  # release library (as tests/run_all.sh builds it)
+#   SHERD_PROFILE=debug bash tests/c/run.sh
+#
+# Without valgrind the programs are built with AddressSanitizer instead (also leak checking).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+profile=${SHERD_PROFILE:-release}
+cd "$root"
+
+if [ "$profile" = release ]; then cargo build --release --lib --quiet; else cargo build --lib --quiet; fi
+libdir="$root/target/$profile"
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# The build tree's pkg-config file, from the same template a packager fills in.
+mkdir -p "$work/pkgconfig"
+version=$(sed -n 's/^version *= *"\(.*\)"/\1/p' Cargo.toml | head -1)
+sed -e "s|@PREFIX@|$root|" -e "s|@LIBDIR@|$libdir|" -e "s|@INCLUDEDIR@|$root/include|" \
+    -e "s|@VERSION@|$version|" sherd.pc.in > "$work/pkgconfig/sherd.pc"
+export PKG_CONFIG_PATH="$work/pkgconfig"
+cflags=$(pkg-config --cflags sherd)
+shared_libs="$(pkg-config --libs sherd) -Wl,-rpath,$libdir"
+static_libs="-Wl,-Bstatic $(pkg-config --libs sherd) -Wl,-Bdynamic $(pkg-config --static --libs-only-l sherd | sed 's/-lsherd//')"
+
+sanitize=()
+if command -v valgrind >/dev/null 2>&1; then
+  run() { valgrind --quiet --error-exitcode=99 --leak-check=full --show-leak-kinds=definite,indirect,possible \
+            --errors-for-leak-kinds=definite,indirect,possible "$@"; }
+else
+  echo "valgrind not found: using AddressSanitizer and LeakSanitizer"
+  sanitize=(-fsanitize=address,undefined -fno-omit-frame-pointer)
+  run() { "$@"; }
+fi
+
+c_flags=(-std=c99 -Wall -Wextra -Werror -pedantic -g -pthread)
+cxx_flags=(-std=c++17 -Wall -Wextra -Werror -pedantic -g -pthread -I"$root/bindings/cpp")
+failed=0
+for source in tests/c/*.c tests/cpp/*.cpp; do
+  [ -e "$source" ] || continue
+  name=$(basename "${source%.*}")
+  for linkage in shared static; do
+    if [ "$linkage" = shared ]; then libs=$shared_libs; else libs=$static_libs; fi
+    binary="$work/$name-$linkage"
+    case "$source" in
+      *.c) compiler=(gcc "${c_flags[@]}") ;;
+      *.cpp) compiler=(g++ "${cxx_flags[@]}") ;;
+    esac
+    # shellcheck disable=SC2086
+    "${compiler[@]}" "${sanitize[@]}" $cflags -Itests/c "$source" -o "$binary" $libs -lm
+    echo "--- $name ($linkage)"
+    if ! (cd "$work" && run "$binary"); then
+      echo "FAILED: $name ($linkage)"
+      failed=1
+    fi
+  done
+done
+exit $failed

@@ -1,0 +1,221 @@
+/* Misuse from C: NULL for every pointer argument, wrong struct sizes, out-of-range
+ * values, indices past the vertex count, NaN coordinates, short buffers. Each must give
+ * its status code and a message naming the problem, never a crash; the valgrind run
+ * checks that nothing is written where it should not be.
+ *
+ * Not tested because it cannot be detected: using or freeing a handle after
+ * sherd_*_free (undefined behaviour, as with free()). */
+#include "check.h"
+
+static const double positions[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+static const float positions_f32[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+static const uint32_t triangles[12] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
+
+#define NULL_ARGUMENT(call, name)                         \
+    do {                                                  \
+        CHECK_STATUS(call, SHERD_STATUS_NULL_POINTER);    \
+        CHECK_MESSAGE("`" name "` is NULL");              \
+    } while (0)
+
+static SherdMesh *make_mesh(void) {
+    SherdMesh *mesh = NULL;
+    CHECK_OK(sherd_mesh_from_arrays(positions, 4, triangles, 4, &mesh));
+    return mesh;
+}
+
+static SherdAxis z_axis(void) {
+    SherdAxis axis;
+    memset(&axis, 0, sizeof axis);
+    axis.size = sizeof axis;
+    axis.direction[2] = 1.0;
+    return axis;
+}
+
+static void test_null_pointers(void) {
+    SherdMesh *mesh = make_mesh();
+    SherdMesh *out = (SherdMesh *)&out; /* must stay untouched on error */
+    SherdMesh *const untouched = out;
+    SherdAxis axis = z_axis();
+    double buffer_f64[64];
+    float buffer_f32[64];
+    uint32_t buffer_u32[64];
+    uint8_t buffer_u8[64];
+    size_t count;
+    uint32_t attributes;
+    const double reference[3] = {1, 0, 0};
+
+    NULL_ARGUMENT(sherd_mesh_from_arrays(NULL, 4, triangles, 4, &out), "positions");
+    NULL_ARGUMENT(sherd_mesh_from_arrays(positions, 4, NULL, 4, &out), "triangles");
+    NULL_ARGUMENT(sherd_mesh_from_arrays(positions, 4, triangles, 4, NULL), "out_mesh");
+    NULL_ARGUMENT(sherd_mesh_from_arrays_f32(NULL, 4, triangles, 4, &out), "positions");
+    NULL_ARGUMENT(sherd_mesh_from_arrays_f32(positions_f32, 4, NULL, 4, &out), "triangles");
+    NULL_ARGUMENT(sherd_mesh_from_arrays_f32(positions_f32, 4, triangles, 4, NULL), "out_mesh");
+    CHECK(out == untouched);
+    NULL_ARGUMENT(sherd_mesh_clone(NULL, &out), "mesh");
+    NULL_ARGUMENT(sherd_mesh_clone(mesh, NULL), "out_mesh");
+    CHECK(out == untouched);
+
+    NULL_ARGUMENT(sherd_mesh_set_normals(NULL, buffer_f64, 4), "mesh");
+    NULL_ARGUMENT(sherd_mesh_set_normals(mesh, NULL, 4), "normals");
+    NULL_ARGUMENT(sherd_mesh_set_normals_f32(NULL, buffer_f32, 4), "mesh");
+    NULL_ARGUMENT(sherd_mesh_set_normals_f32(mesh, NULL, 4), "normals");
+    NULL_ARGUMENT(sherd_mesh_set_colors(NULL, buffer_u8, 4), "mesh");
+    NULL_ARGUMENT(sherd_mesh_set_colors(mesh, NULL, 4), "rgba");
+    NULL_ARGUMENT(sherd_mesh_set_corner_uvs(NULL, buffer_f32, 12), "mesh");
+    NULL_ARGUMENT(sherd_mesh_set_corner_uvs(mesh, NULL, 12), "uvs");
+
+    NULL_ARGUMENT(sherd_mesh_vertex_count(NULL, &count), "mesh");
+    NULL_ARGUMENT(sherd_mesh_vertex_count(mesh, NULL), "out_count");
+    NULL_ARGUMENT(sherd_mesh_face_count(NULL, &count), "mesh");
+    NULL_ARGUMENT(sherd_mesh_face_count(mesh, NULL), "out_count");
+    NULL_ARGUMENT(sherd_mesh_attributes(NULL, &attributes), "mesh");
+    NULL_ARGUMENT(sherd_mesh_attributes(mesh, NULL), "out_attributes");
+    NULL_ARGUMENT(sherd_mesh_copy_positions(NULL, buffer_f64, 4), "mesh");
+    NULL_ARGUMENT(sherd_mesh_copy_positions(mesh, NULL, 4), "out");
+    NULL_ARGUMENT(sherd_mesh_copy_positions_f32(NULL, buffer_f32, 4), "mesh");
+    NULL_ARGUMENT(sherd_mesh_copy_positions_f32(mesh, NULL, 4), "out");
+    NULL_ARGUMENT(sherd_mesh_copy_triangles(NULL, buffer_u32, 4), "mesh");
+    NULL_ARGUMENT(sherd_mesh_copy_triangles(mesh, NULL, 4), "out");
+    NULL_ARGUMENT(sherd_mesh_copy_normals(NULL, buffer_f64, 4), "mesh");
+    NULL_ARGUMENT(sherd_mesh_copy_colors(NULL, buffer_u8, 4), "mesh");
+    NULL_ARGUMENT(sherd_mesh_copy_corner_uvs(NULL, buffer_f32, 12), "mesh");
+    NULL_ARGUMENT(sherd_mesh_copy_quality(NULL, buffer_f32, 4), "mesh");
+
+    NULL_ARGUMENT(sherd_axis_oriented_transform(NULL, reference, buffer_f64), "axis");
+    NULL_ARGUMENT(sherd_axis_oriented_transform(&axis, NULL, buffer_f64), "reference_point");
+    NULL_ARGUMENT(sherd_axis_oriented_transform(&axis, reference, NULL), "out_matrix");
+    NULL_ARGUMENT(sherd_mesh_oriented_transform(NULL, &axis, buffer_f64), "mesh");
+    NULL_ARGUMENT(sherd_mesh_oriented_transform(mesh, NULL, buffer_f64), "axis");
+    NULL_ARGUMENT(sherd_mesh_oriented_transform(mesh, &axis, NULL), "out_matrix");
+
+    /* The optional attributes' copy functions check the mesh's content before `out`. */
+    {
+        double normals[12] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+        CHECK_OK(sherd_mesh_set_normals(mesh, normals, 4));
+        NULL_ARGUMENT(sherd_mesh_copy_normals(mesh, NULL, 4), "out");
+    }
+
+    /* sherd_mesh_free(NULL) is a no-op. */
+    sherd_mesh_free(NULL);
+    sherd_mesh_free(mesh);
+}
+
+static void test_invalid_mesh_arrays(void) {
+    SherdMesh *out = NULL;
+    double bad[12];
+    uint32_t bad_triangles[12];
+
+    memcpy(bad, positions, sizeof bad);
+    bad[7] = NAN;
+    CHECK_STATUS(sherd_mesh_from_arrays(bad, 4, triangles, 4, &out), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("vertex 2");
+    bad[7] = INFINITY;
+    CHECK_STATUS(sherd_mesh_from_arrays(bad, 4, triangles, 4, &out), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("vertex 2");
+
+    memcpy(bad_triangles, triangles, sizeof bad_triangles);
+    bad_triangles[10] = 4;
+    CHECK_STATUS(sherd_mesh_from_arrays(positions, 4, bad_triangles, 4, &out), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("face 3 refers to vertex 4");
+    CHECK_STATUS(sherd_mesh_from_arrays_f32(positions_f32, 4, bad_triangles, 4, &out), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("face 3 refers to vertex 4");
+    /* Fewer vertices than the triangles use. */
+    CHECK_STATUS(sherd_mesh_from_arrays(positions, 3, triangles, 4, &out), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("only 3 vertices");
+
+    CHECK_STATUS(sherd_mesh_from_arrays(positions, 0, NULL, 0, &out), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("vertex_count");
+    /* A count whose byte size overflows is refused before any read. */
+    CHECK_STATUS(sherd_mesh_from_arrays(positions, (size_t)-1 / 2, triangles, 4, &out), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("too large");
+    CHECK(out == NULL);
+
+    /* A point cloud (no triangles) is accepted, with NULL triangles. */
+    CHECK_OK(sherd_mesh_from_arrays(positions, 4, NULL, 0, &out));
+    sherd_mesh_free(out);
+}
+
+static void test_invalid_attributes(void) {
+    SherdMesh *mesh = make_mesh();
+    double normals[12] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    float uvs[24] = {0};
+    uint8_t colors[16] = {0};
+
+    CHECK_STATUS(sherd_mesh_set_normals(mesh, normals, 3), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("the mesh has 4 vertices");
+    normals[4] = NAN;
+    CHECK_STATUS(sherd_mesh_set_normals(mesh, normals, 4), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("normal of vertex 1");
+    CHECK_STATUS(sherd_mesh_set_colors(mesh, colors, 5), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_mesh_set_corner_uvs(mesh, uvs, 4), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("expected 3 * 4 triangles = 12");
+    uvs[5] = NAN;
+    CHECK_STATUS(sherd_mesh_set_corner_uvs(mesh, uvs, 12), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("corner 2");
+    sherd_mesh_free(mesh);
+}
+
+static void test_short_buffers(void) {
+    SherdMesh *mesh = make_mesh();
+    double out[12];
+    uint32_t indices[12];
+    size_t i;
+
+    for (i = 0; i < 12; ++i) out[i] = -7.0;
+    CHECK_STATUS(sherd_mesh_copy_positions(mesh, out, 3), SHERD_STATUS_BUFFER_TOO_SMALL);
+    CHECK_MESSAGE("4 vertices");
+    for (i = 0; i < 12; ++i) CHECK(out[i] == -7.0); /* nothing written */
+    CHECK_STATUS(sherd_mesh_copy_triangles(mesh, indices, 0), SHERD_STATUS_BUFFER_TOO_SMALL);
+    /* A larger buffer is fine: only the mesh's values are written. */
+    {
+        double larger[15];
+        larger[12] = 42.0;
+        CHECK_OK(sherd_mesh_copy_positions(mesh, larger, 5));
+        CHECK(larger[12] == 42.0);
+    }
+    sherd_mesh_free(mesh);
+}
+
+static void test_axis_struct(void) {
+    SherdAxis axis = z_axis();
+    double matrix[16];
+    const double reference[3] = {1, 0, 0};
+    const double nan_reference[3] = {1, NAN, 0};
+
+    axis.size = 0;
+    CHECK_STATUS(sherd_axis_oriented_transform(&axis, reference, matrix), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("`axis->size` is 0");
+    axis.size = sizeof axis - 1;
+    CHECK_STATUS(sherd_axis_oriented_transform(&axis, reference, matrix), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("sizeof(SherdAxis)");
+
+    axis = z_axis();
+    axis.direction[2] = 0.0;
+    CHECK_STATUS(sherd_axis_oriented_transform(&axis, reference, matrix), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("non-zero direction");
+    axis = z_axis();
+    axis.point[1] = NAN;
+    CHECK_STATUS(sherd_axis_oriented_transform(&axis, reference, matrix), SHERD_STATUS_INVALID_ARGUMENT);
+    axis = z_axis();
+    CHECK_STATUS(sherd_axis_oriented_transform(&axis, nan_reference, matrix), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("reference_point");
+}
+
+static void test_messages_survive_success(void) {
+    SherdMesh *mesh = NULL;
+    CHECK_STATUS(sherd_mesh_from_arrays(NULL, 4, triangles, 4, &mesh), SHERD_STATUS_NULL_POINTER);
+    CHECK_OK(sherd_mesh_from_arrays(positions, 4, triangles, 4, &mesh));
+    CHECK_MESSAGE("sherd_mesh_from_arrays: `positions` is NULL");
+    sherd_mesh_free(mesh);
+}
+
+int main(void) {
+    test_null_pointers();
+    test_invalid_mesh_arrays();
+    test_invalid_attributes();
+    test_short_buffers();
+    test_axis_struct();
+    test_messages_survive_success();
+    printf("test_misuse: ok\n");
+    return 0;
+}

@@ -1,0 +1,238 @@
+//! Orientation on analytic sherds built here (a wall patch of a revolved profile with
+//! both skins and fracture faces, noisy, moved to a random pose), and bad input.
+
+use nalgebra::{Isometry3, Translation3, UnitQuaternion};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, Normal};
+use sherd::mesh::{Mesh, Point, Vector};
+use sherd::orient::{
+    orient_automatic, orient_from_three_points, segment_surfaces, Axis, ManualOptions, OrientOptions, Skin, Verdict,
+};
+use sherd::Error;
+
+/// A closed wall patch: outer skin `r = profile(z)`, inner skin `thickness` inside, over
+/// `sector_deg` and `z` in `[z0, z1]`, `n_theta x n_z` grid per skin, side faces closing it.
+/// Returned in the oriented frame (axis = z through the origin), then posed.
+fn wall_patch(
+    profile: impl Fn(f64) -> f64,
+    z_range: (f64, f64),
+    sector_deg: f64,
+    thickness: f64,
+    grid: (usize, usize),
+    noise_mm: f64,
+    seed: u64,
+) -> (Mesh, Axis) {
+    let (n_theta, n_z) = grid;
+    let mut positions = Vec::new();
+    let sector = sector_deg.to_radians();
+    let slope = |z: f64| (profile(z + 1e-4) - profile(z - 1e-4)) / 2e-4;
+    for skin in 0..2 {
+        for j in 0..n_z {
+            let z = z_range.0 + (z_range.1 - z_range.0) * j as f64 / (n_z - 1) as f64;
+            for i in 0..n_theta {
+                let theta = sector * i as f64 / (n_theta - 1) as f64;
+                let r = profile(z);
+                // Inner skin: offset along the profile's inward normal by the thickness.
+                let (nr, nz) = { let s = slope(z); let l = (1.0 + s * s).sqrt(); (1.0 / l, -s / l) };
+                let (rr, zz) = if skin == 0 { (r, z) } else { (r - thickness * nr, z - thickness * nz) };
+                positions.push(Point::new(rr * theta.cos(), rr * theta.sin(), zz));
+            }
+        }
+    }
+    let index = |skin: usize, i: usize, j: usize| (skin * n_theta * n_z + j * n_theta + i) as u32;
+    let mut triangles = Vec::new();
+    let mut quad = |a: u32, b: u32, c: u32, d: u32, outward: Vector, positions: &Vec<Point>| {
+        let normal = (positions[b as usize] - positions[a as usize]).cross(&(positions[c as usize] - positions[a as usize]));
+        if normal.dot(&outward) >= 0.0 {
+            triangles.push([a, b, c]);
+            triangles.push([a, c, d]);
+        } else {
+            triangles.push([a, c, b]);
+            triangles.push([a, d, c]);
+        }
+    };
+    for skin in 0..2 {
+        for j in 0..n_z - 1 {
+            for i in 0..n_theta - 1 {
+                let p = positions[index(skin, i, j) as usize];
+                let radial = Vector::new(p.x, p.y, 0.0).normalize();
+                let outward = if skin == 0 { radial } else { -radial };
+                quad(index(skin, i, j), index(skin, i + 1, j), index(skin, i + 1, j + 1), index(skin, i, j + 1), outward, &positions);
+            }
+        }
+    }
+    for j in 0..n_z - 1 {
+        for (i, outward) in [(0, Vector::new(0.0, -1.0, 0.0)), (n_theta - 1, Vector::new(-sector.sin(), sector.cos(), 0.0))] {
+            quad(index(0, i, j), index(0, i, j + 1), index(1, i, j + 1), index(1, i, j), outward, &positions);
+        }
+    }
+    for i in 0..n_theta - 1 {
+        for (j, outward) in [(0, -Vector::z()), (n_z - 1, Vector::z())] {
+            quad(index(0, i, j), index(0, i + 1, j), index(1, i + 1, j), index(1, i, j), outward, &positions);
+        }
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    if noise_mm > 0.0 {
+        let normal = Normal::new(0.0, noise_mm).unwrap();
+        for p in &mut positions {
+            *p += Vector::new(normal.sample(&mut rng), normal.sample(&mut rng), normal.sample(&mut rng));
+        }
+    }
+    let mut mesh = Mesh::new(positions, triangles);
+    let pose = random_pose(&mut rng);
+    mesh.transform(&pose);
+    (mesh, Axis::z().transformed(&pose))
+}
+
+fn random_pose(rng: &mut ChaCha8Rng) -> Isometry3<f64> {
+    let uniform = Normal::new(0.0, 1.0).unwrap();
+    let axis = Vector::new(uniform.sample(rng), uniform.sample(rng), uniform.sample(rng));
+    let angle = 2.0 * uniform.sample(rng);
+    let rotation = UnitQuaternion::from_scaled_axis(axis.normalize() * angle);
+    let shift = Translation3::new(100.0 * uniform.sample(rng), 100.0 * uniform.sample(rng), 100.0 * uniform.sample(rng));
+    Isometry3::from_parts(shift, rotation)
+}
+
+fn bowl(z: f64) -> f64 {
+    60.0 + 0.45 * z + 0.004 * z * z
+}
+
+#[test]
+fn bowl_wall_is_oriented_within_two_degrees() {
+    for seed in 0..4 {
+        let (mesh, truth) = wall_patch(bowl, (0.0, 50.0), 50.0, 5.0, (60, 40), 0.03, seed);
+        let orientation = orient_automatic(&mesh, &OrientOptions::default()).unwrap();
+        let error = orientation.axis.line_angle_to_deg(&truth);
+        assert!(error < 2.0, "seed {seed}: {error} deg, report {:?}", orientation.report);
+        assert!(orientation.verdict.is_oriented(), "seed {seed}: {:?} {:?}", orientation.verdict, orientation.report);
+        let distance = truth.distance_to(&orientation.axis.point);
+        assert!(distance < 3.0, "seed {seed}: axis point {distance} mm off");
+    }
+}
+
+#[test]
+fn cylinder_wall_direction_and_position() {
+    let (mesh, truth) = wall_patch(|_| 70.0, (0.0, 40.0), 40.0, 6.0, (50, 30), 0.03, 11);
+    let orientation = orient_automatic(&mesh, &OrientOptions::default()).unwrap();
+    assert!(orientation.axis.line_angle_to_deg(&truth) < 2.0, "{:?}", orientation.report);
+    assert!(truth.distance_to(&orientation.axis.point) < 2.0);
+}
+
+#[test]
+fn point_cloud_with_normals_is_oriented() {
+    let (mesh, truth) = wall_patch(bowl, (0.0, 50.0), 50.0, 5.0, (60, 40), 0.0, 3);
+    let lines = sherd::orient::normal_lines::NormalLines::from_mesh(&mesh).unwrap();
+    let cloud = Mesh::from_points_and_normals(lines.points.clone(), lines.directions.clone());
+    let orientation = orient_automatic(&cloud, &OrientOptions::default()).unwrap();
+    assert!(orientation.axis.line_angle_to_deg(&truth) < 2.0, "{:?}", orientation.report);
+}
+
+#[test]
+fn flat_piece_needs_manual_orientation() {
+    // A slab of a base: both skins flat, normals all along the axis.
+    // A 58 x 43.5 x 6 mm slab.
+    let mut positions = Vec::new();
+    let n = 30;
+    for k in 0..2 {
+        for j in 0..n {
+            for i in 0..n {
+                positions.push(Point::new(2.0 * i as f64, 1.5 * j as f64, 6.0 * k as f64));
+            }
+        }
+    }
+    let mut triangles = Vec::new();
+    for j in 0..n - 1 {
+        for i in 0..n - 1 {
+            let a = (j * n + i) as u32;
+            let (b, c, d) = (a + 1, a + 1 + n as u32, a + n as u32);
+            triangles.push([a, c, b]);
+            triangles.push([a, d, c]);
+            let o = (n * n) as u32;
+            triangles.push([a + o, b + o, c + o]);
+            triangles.push([a + o, c + o, d + o]);
+        }
+    }
+    let mesh = Mesh::new(positions, triangles);
+    let orientation = orient_automatic(&mesh, &OrientOptions::default()).unwrap();
+    match &orientation.verdict {
+        Verdict::NeedsManualOrientation { reason } => assert!(reason.contains("parallel"), "{reason}"),
+        Verdict::Oriented => panic!("a flat slab was oriented: {:?}", orientation.report),
+    }
+}
+
+#[test]
+fn spherical_piece_needs_manual_orientation() {
+    let (mesh, _) = wall_patch(|z| (90.0f64 * 90.0 - z * z).sqrt(), (-25.0, 25.0), 35.0, 5.0, (50, 40), 0.05, 8);
+    let orientation = orient_automatic(&mesh, &OrientOptions::default()).unwrap();
+    assert!(!orientation.verdict.is_oriented(), "a sphere patch was oriented: {:?}", orientation.report);
+}
+
+#[test]
+fn three_points_on_a_rim() {
+    let (mesh, truth) = wall_patch(bowl, (0.0, 50.0), 50.0, 5.0, (60, 40), 0.0, 21);
+    // The top row of the outer skin is the rim; its vertices are 40 rows up.
+    let n_theta = 60;
+    let rim: Vec<Point> = [0usize, 25, 59].iter().map(|i| mesh.positions[39 * n_theta + i]).collect();
+    let orientation = orient_from_three_points(&mesh, [rim[0], rim[1], rim[2]], &ManualOptions::default()).unwrap();
+    assert!(orientation.axis.line_angle_to_deg(&truth) < 0.01);
+    assert!(truth.distance_to(&orientation.axis.point) < 0.01);
+    let radius = orientation.report.circle_radius_mm.unwrap();
+    assert!((radius - bowl(50.0)).abs() < 1e-6, "{radius}");
+    assert!(orientation.kept_vertex_count > 0);
+    // The bowl widens upwards, so the axis points to the rim (+z of the oriented frame).
+    assert!(orientation.axis.angle_to_deg(&truth) < 1.0, "sense wrong");
+}
+
+#[test]
+fn bad_manual_points_are_errors() {
+    let (mesh, _) = wall_patch(bowl, (0.0, 50.0), 50.0, 5.0, (30, 20), 0.0, 2);
+    let p = mesh.positions[5];
+    let q = mesh.positions[17];
+    let collinear = [p, q, p + (q - p) * 2.0];
+    let error = orient_from_three_points(&mesh, collinear, &ManualOptions::default()).unwrap_err();
+    assert!(error.to_string().contains("collinear"), "{error}");
+    let error = orient_from_three_points(&mesh, [p, p, q], &ManualOptions::default()).unwrap_err();
+    assert!(error.to_string().contains("coincide"), "{error}");
+    let far = [p, q, mesh.positions[40] + Vector::new(500.0, 0.0, 0.0)];
+    let error = orient_from_three_points(&mesh, far, &ManualOptions::default()).unwrap_err();
+    assert!(error.to_string().contains("point 3"), "{error}");
+}
+
+#[test]
+fn bad_meshes_are_errors() {
+    let empty = Mesh::default();
+    assert!(matches!(orient_automatic(&empty, &OrientOptions::default()), Err(Error::DegenerateGeometry(_))));
+    let (mut mesh, _) = wall_patch(bowl, (0.0, 50.0), 50.0, 5.0, (30, 20), 0.0, 2);
+    let count = mesh.vertex_count();
+    let mut normals = vec![Vector::z(); count];
+    normals[7] = Vector::new(f64::NAN, 0.0, 1.0);
+    mesh.normals = Some(normals);
+    let error = orient_automatic(&mesh, &OrientOptions::default()).unwrap_err();
+    assert!(error.to_string().contains("vertex 7"), "{error}");
+    // All points in one plane: no thickness, no curvature.
+    let coplanar = Mesh::new(
+        (0..100).map(|i| Point::new((i % 10) as f64, (i / 10) as f64, 0.0)).collect(),
+        (0..9u32).flat_map(|j| (0..9u32).flat_map(move |i| {
+            let a = j * 10 + i;
+            [[a, a + 1, a + 11], [a, a + 11, a + 10]]
+        })).collect(),
+    );
+    let error = orient_automatic(&coplanar, &OrientOptions::default()).unwrap_err();
+    assert!(error.to_string().contains("plane"), "{error}");
+    let cloud_without_normals = Mesh::new(vec![Point::origin(); 10], vec![]);
+    assert!(orient_automatic(&cloud_without_normals, &OrientOptions::default()).is_err());
+}
+
+#[test]
+fn skins_are_segmented() {
+    let (mesh, truth) = wall_patch(bowl, (0.0, 50.0), 50.0, 5.0, (40, 30), 0.0, 4);
+    let skins = segment_surfaces(&mesh, &truth).unwrap();
+    let per_skin = 40 * 30;
+    // Interior vertices of each skin (away from the borders, whose normals mix in the sides).
+    let interior = |skin: usize| {
+        (2..28).flat_map(move |j| (2..38).map(move |i| skin * per_skin + j * 40 + i)).collect::<Vec<_>>()
+    };
+    assert!(interior(0).iter().all(|&v| skins[v] == Skin::Outer));
+    assert!(interior(1).iter().all(|&v| skins[v] == Skin::Inner));
+}

@@ -1,0 +1,291 @@
+//! Synthetic sherds: closed watertight fragments whose ground truth agrees with their
+//! geometry, deterministic per seed, of the requested part, size and resolution.
+
+use std::collections::HashMap;
+
+use sherd::mesh::{Mesh, Point};
+use sherd::synth::truth::{distance_to_polyline, sector_angle_deg};
+use sherd::synth::{
+    generate_vessel, synthetic_sherd, HardCase, SherdOptions, SherdPart, SurfaceKind, SynthSherd, VesselOptions, VesselShape,
+};
+
+/// Every directed edge appears exactly once and its reverse exactly once: closed,
+/// watertight, consistently oriented. Returns a description of the first violation.
+fn watertight_violation(mesh: &Mesh) -> Option<String> {
+    let mut edges: HashMap<(u32, u32), usize> = HashMap::new();
+    for (face, t) in mesh.triangles.iter().enumerate() {
+        if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+            return Some(format!("face {face} repeats a vertex: {t:?}"));
+        }
+        for k in 0..3 {
+            *edges.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
+        }
+    }
+    for (&(a, b), &count) in &edges {
+        if count != 1 {
+            return Some(format!("directed edge {a}->{b} used {count} times"));
+        }
+        if edges.get(&(b, a)) != Some(&1) {
+            return Some(format!("edge {a}->{b} has no opposite: a hole"));
+        }
+    }
+    None
+}
+
+/// Signed volume by the divergence theorem: positive when the faces point outwards.
+fn signed_volume(mesh: &Mesh) -> f64 {
+    mesh.triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| mesh.positions[v as usize].coords);
+            a.dot(&b.cross(&c)) / 6.0
+        })
+        .sum()
+}
+
+fn rz_in_truth_frame(sherd: &SynthSherd) -> Vec<[f64; 2]> {
+    let axis = sherd.truth.axis;
+    sherd.mesh.positions.iter().map(|p| [axis.distance_to(p), axis.height_of(p)]).collect()
+}
+
+/// Largest distance (mm) of a vertex of skin `kind` from that skin's truth profile.
+fn worst_profile_distance(sherd: &SynthSherd, kind: SurfaceKind) -> f64 {
+    let polyline = if kind == SurfaceKind::Outer { &sherd.truth.profile } else { &sherd.truth.inner_profile };
+    rz_in_truth_frame(sherd)
+        .iter()
+        .zip(&sherd.vertex_kinds)
+        .filter(|(_, k)| **k == kind)
+        .map(|(rz, _)| distance_to_polyline(*rz, polyline))
+        .fold(0.0, f64::max)
+}
+
+fn check_fragment(sherd: &SynthSherd, label: &str) {
+    let mesh = &sherd.mesh;
+    mesh.validate().unwrap_or_else(|e| panic!("{label}: {e}"));
+    assert!(mesh.face_count() > 0, "{label}: empty");
+    if let Some(problem) = watertight_violation(mesh) {
+        panic!("{label}: not watertight: {problem}");
+    }
+    let volume = signed_volume(mesh);
+    assert!(volume > 0.0, "{label}: faces point inwards (volume {volume})");
+    // A closed shell's volume is about its outer area times the wall thickness.
+    let outer_area: f64 = (0..mesh.face_count()).filter(|&f| sherd.face_kinds[f] == SurfaceKind::Outer).map(|f| mesh.face_area(f)).sum();
+    let expected = outer_area * sherd.truth.vessel.wall_thickness_mm;
+    assert!((volume / expected - 1.0).abs() < 0.25, "{label}: volume {volume} vs area x thickness {expected}");
+    let normals = mesh.normals.as_ref().expect("vertex normals");
+    assert!(normals.iter().all(|n| (n.norm() - 1.0).abs() < 1e-9), "{label}: normals not unit");
+    assert_eq!(sherd.vertex_kinds.len(), mesh.vertex_count());
+    assert_eq!(sherd.face_kinds.len(), mesh.face_count());
+
+    let tolerance = sherd.truth.deformation_bound_mm + 6.0 * sherd.truth.noise_mm + 1e-3;
+    for kind in [SurfaceKind::Outer, SurfaceKind::Inner] {
+        let worst = worst_profile_distance(sherd, kind);
+        assert!(worst <= tolerance, "{label}: a {kind:?} vertex is {worst} mm off its profile (tolerance {tolerance})");
+    }
+    let sector = sector_angle_deg(&mesh.positions, &sherd.truth.axis);
+    assert!((sector - sherd.truth.sector_angle_deg).abs() < 1e-9, "{label}: sector {sector} vs truth {}", sherd.truth.sector_angle_deg);
+    let heights: Vec<f64> = mesh.positions.iter().map(|p| sherd.truth.axis.height_of(p)).collect();
+    let extent = heights.iter().cloned().fold(f64::MIN, f64::max) - heights.iter().cloned().fold(f64::MAX, f64::min);
+    assert!((extent - sherd.truth.height_mm).abs() < 1e-9, "{label}: height {extent} vs truth {}", sherd.truth.height_mm);
+}
+
+#[test]
+fn every_part_is_a_watertight_fragment_of_that_part_consistent_with_its_truth() {
+    for part in SherdPart::ALL {
+        for seed in 0..4u64 {
+            let options = SherdOptions { target_faces: 8_000, ..SherdOptions::for_part(part) };
+            let sherd = synthetic_sherd(seed, &options);
+            let label = format!("{part:?} seed {seed} ({:?})", sherd.truth.vessel.shape);
+            check_fragment(&sherd, &label);
+            assert_eq!(sherd.truth.part, part, "{label}");
+            let has_rim_faces = sherd.face_kinds.contains(&SurfaceKind::Rim);
+            assert_eq!(has_rim_faces, matches!(part, SherdPart::Rim | SherdPart::RimToBase), "{label}: rim faces");
+            assert_eq!(sherd.truth.rim_radius_mm.is_some(), has_rim_faces, "{label}");
+            assert_eq!(sherd.truth.base_radius_mm.is_some(), matches!(part, SherdPart::Base | SherdPart::RimToBase), "{label}");
+            if has_rim_faces {
+                // The rim top is the highest part of the vessel for every family here.
+                let top = rz_in_truth_frame(&sherd).iter().map(|p| p[1]).fold(f64::MIN, f64::max);
+                let tolerance = sherd.truth.deformation_bound_mm + 6.0 * sherd.truth.noise_mm + 0.01;
+                assert!((top - sherd.truth.vessel.height_mm).abs() <= tolerance, "{label}: top {top} vs vessel height {}", sherd.truth.vessel.height_mm);
+            }
+        }
+    }
+}
+
+#[test]
+fn every_vessel_family_gives_valid_fragments() {
+    for shape in VesselShape::ALL {
+        for seed in 10..13u64 {
+            let options = SherdOptions { target_faces: 6_000, shape: Some(shape), ..Default::default() };
+            let sherd = synthetic_sherd(seed, &options);
+            assert_eq!(sherd.truth.vessel.shape, shape);
+            let thickness = sherd.truth.vessel.wall_thickness_mm;
+            assert!((4.0..=10.0).contains(&thickness), "{shape:?}: wall {thickness} mm");
+            check_fragment(&sherd, &format!("{shape:?} seed {seed}"));
+        }
+    }
+}
+
+#[test]
+fn ideal_sherd_lies_exactly_on_its_profile() {
+    let options = SherdOptions { target_faces: 10_000, ..SherdOptions::for_part(SherdPart::Rim).ideal() };
+    let sherd = synthetic_sherd(7, &options);
+    assert_eq!(sherd.truth.deformation_bound_mm, 0.0);
+    for kind in [SurfaceKind::Outer, SurfaceKind::Inner] {
+        let worst = worst_profile_distance(&sherd, kind);
+        // The truth profile is a polyline with points 0.5 mm apart: its chord error on the
+        // tightest bends (radius about 3 wall thicknesses) is a few micrometres.
+        assert!(worst < 5e-3, "{kind:?} vertex {worst} mm off the profile of an ideal sherd");
+    }
+    // The rim radius is the radius of the rim's outer edge: the outer skin's highest
+    // points (every family's wall still rises at the rim).
+    let rim = sherd.truth.rim_radius_mm.unwrap();
+    let outer_top = rz_in_truth_frame(&sherd)
+        .iter()
+        .zip(&sherd.vertex_kinds)
+        .filter(|(_, k)| **k == SurfaceKind::Outer)
+        .map(|(p, _)| *p)
+        .fold([0.0, f64::MIN], |best, p| if p[1] > best[1] { p } else { best });
+    assert!((outer_top[0] - rim).abs() < 1e-3, "rim radius {rim} vs the outer skin's top at radius {}", outer_top[0]);
+}
+
+#[test]
+fn noise_moves_vertices_by_about_sigma() {
+    let base = SherdOptions { target_faces: 5_000, random_motion: false, ..SherdOptions::for_part(SherdPart::Body).ideal() };
+    let clean = synthetic_sherd(3, &base);
+    let noisy = synthetic_sherd(3, &SherdOptions { noise_mm: 0.1, ..base.clone() });
+    assert_eq!(clean.mesh.triangles, noisy.mesh.triangles);
+    let squared: f64 = clean.mesh.positions.iter().zip(&noisy.mesh.positions).map(|(a, b)| (a - b).norm_squared()).sum();
+    let per_coordinate = (squared / (3 * clean.mesh.vertex_count()) as f64).sqrt();
+    assert!((per_coordinate - 0.1).abs() < 0.01, "noise standard deviation {per_coordinate}, asked 0.1");
+}
+
+#[test]
+fn sector_angle_follows_the_request() {
+    for (seed, range) in [(1u64, [15.0, 20.0]), (2, [40.0, 50.0]), (3, [90.0, 100.0])] {
+        let options = SherdOptions { target_faces: 4_000, sector_deg: range, ..SherdOptions::for_part(SherdPart::Rim) };
+        let sherd = synthetic_sherd(seed, &options);
+        let sector = sherd.truth.sector_angle_deg;
+        assert!(sector > 0.6 * range[0] && sector < 1.5 * range[1], "asked {range:?} degrees, got {sector}");
+    }
+}
+
+#[test]
+fn face_count_follows_the_target() {
+    for target in [2_000usize, 20_000, 100_000] {
+        let sherd = synthetic_sherd(5, &SherdOptions { target_faces: target, ..Default::default() });
+        let faces = sherd.mesh.face_count() as f64;
+        assert!((faces / target as f64 - 1.0).abs() < 0.25, "target {target}, got {faces}");
+    }
+}
+
+#[test]
+fn same_seed_same_sherd_other_seed_other_sherd() {
+    let options = SherdOptions { target_faces: 5_000, ..Default::default() };
+    let a = synthetic_sherd(42, &options);
+    let b = synthetic_sherd(42, &options);
+    assert_eq!(a.mesh, b.mesh);
+    assert_eq!(a.truth, b.truth);
+    let c = synthetic_sherd(43, &options);
+    assert_ne!(a.mesh.positions, c.mesh.positions);
+    // The same in a pool of one thread: the result does not depend on scheduling.
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    let single = pool.install(|| synthetic_sherd(42, &options));
+    assert_eq!(single.mesh, a.mesh);
+}
+
+#[test]
+fn truth_survives_json() {
+    let sherd = synthetic_sherd(9, &SherdOptions { target_faces: 2_000, ..Default::default() });
+    let text = serde_json::to_string(&sherd.truth).unwrap();
+    let back: sherd::synth::GroundTruth = serde_json::from_str(&text).unwrap();
+    assert!(sherd.truth.axis.angle_to_deg(&back.axis) < 1e-9);
+    assert!((back.axis.point - sherd.truth.axis.point).norm() < 1e-9);
+    assert_eq!(back.part, sherd.truth.part);
+    assert_eq!(back.profile.len(), sherd.truth.profile.len());
+    let worst = back.profile.iter().zip(&sherd.truth.profile).map(|(a, b)| (a[0] - b[0]).abs().max((a[1] - b[1]).abs())).fold(0.0, f64::max);
+    assert!(worst < 1e-9, "profile changed by {worst} mm through JSON");
+    let value: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert!(value["axis"]["direction"].as_array().is_some_and(|d| d.len() == 3), "{text}");
+}
+
+#[test]
+fn flat_base_preset_is_flat() {
+    for seed in 0..3u64 {
+        let sherd = synthetic_sherd(seed, &SherdOptions::hard_case(HardCase::FlatBase));
+        check_fragment(&sherd, &format!("flat seed {seed}"));
+        assert_eq!(sherd.truth.part, SherdPart::Flat);
+        assert_eq!(sherd.truth.hard_case, Some(HardCase::FlatBase));
+        let tolerance = 6.0 * sherd.truth.noise_mm + sherd.truth.deformation_bound_mm;
+        for (rz, kind) in rz_in_truth_frame(&sherd).iter().zip(&sherd.vertex_kinds) {
+            if *kind == SurfaceKind::Outer {
+                assert!(rz[1].abs() <= tolerance, "outer vertex of a flat base piece at height {}", rz[1]);
+            }
+        }
+    }
+}
+
+/// Least-squares sphere through `points` (algebraic fit): centre and radius.
+fn fit_sphere(points: &[Point]) -> (Point, f64) {
+    let mut normal = nalgebra::Matrix4::<f64>::zeros();
+    let mut right = nalgebra::Vector4::<f64>::zeros();
+    for p in points {
+        let row = nalgebra::Vector4::new(2.0 * p.x, 2.0 * p.y, 2.0 * p.z, 1.0);
+        normal += row * row.transpose();
+        right += row * p.coords.norm_squared();
+    }
+    let solution = normal.lu().solve(&right).expect("points span space");
+    let centre = Point::new(solution[0], solution[1], solution[2]);
+    (centre, (solution[3] + centre.coords.norm_squared()).sqrt())
+}
+
+#[test]
+fn near_spherical_preset_lies_on_a_sphere_centred_on_the_axis() {
+    for seed in 0..3u64 {
+        let options = SherdOptions { noise_mm: 0.0, deformation_scale: 0.0, ..SherdOptions::hard_case(HardCase::NearSpherical) };
+        let sherd = synthetic_sherd(seed, &options);
+        check_fragment(&sherd, &format!("near-spherical seed {seed}"));
+        assert_eq!(sherd.truth.vessel.shape, VesselShape::Globular);
+        let outer: Vec<Point> = sherd.mesh.positions.iter().zip(&sherd.vertex_kinds).filter(|(_, k)| **k == SurfaceKind::Outer).map(|(p, _)| *p).collect();
+        let (centre, radius) = fit_sphere(&outer);
+        let worst = outer.iter().map(|p| ((p - centre).norm() - radius).abs()).fold(0.0, f64::max);
+        assert!(worst < 0.1, "seed {seed}: outer skin up to {worst} mm off a sphere");
+        assert!(sherd.truth.axis.distance_to(&centre) < 0.5, "sphere centre {} mm off the axis", sherd.truth.axis.distance_to(&centre));
+    }
+}
+
+#[test]
+fn tiny_preset_is_tiny() {
+    for seed in 0..3u64 {
+        let sherd = synthetic_sherd(seed, &SherdOptions::hard_case(HardCase::Tiny));
+        check_fragment(&sherd, &format!("tiny seed {seed}"));
+        let (low, high) = sherd.mesh.bounding_box().unwrap();
+        let diagonal = (high - low).norm();
+        assert!(diagonal < 45.0, "tiny piece {diagonal} mm across");
+        assert_eq!(sherd.truth.part, SherdPart::Body);
+    }
+}
+
+#[test]
+fn a_broken_vessel_is_its_fragments() {
+    let options = VesselOptions { fragment_count: 12, cell_size_mm: 3.0, ..Default::default() };
+    let vessel = generate_vessel(4, &options);
+    assert!(vessel.fragments.len() >= 10, "{} fragments", vessel.fragments.len());
+    let mut outer_area = 0.0;
+    for (k, fragment) in vessel.fragments.iter().enumerate() {
+        check_fragment(fragment, &format!("fragment {k}"));
+        outer_area += (0..fragment.mesh.face_count())
+            .filter(|&f| fragment.face_kinds[f] == SurfaceKind::Outer)
+            .map(|f| fragment.mesh.face_area(f))
+            .sum::<f64>();
+    }
+    // The fragments cover the vessel's outside once (pinch fills overlap by a few cells).
+    let profile = &vessel.profile;
+    let expected: f64 = profile
+        .windows(2)
+        .map(|w| std::f64::consts::PI * (w[0][0] + w[1][0]) * (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+        .sum();
+    assert!((outer_area / expected - 1.0).abs() < 0.03, "fragments' outer area {outer_area} vs vessel {expected}");
+    let parts: Vec<SherdPart> = vessel.fragments.iter().map(|f| f.truth.part).collect();
+    assert!(parts.contains(&SherdPart::Rim), "{parts:?}");
+}
