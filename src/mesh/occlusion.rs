@@ -166,6 +166,7 @@ fn any_perpendicular(v: &Vector) -> Vector {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::Point;
 
 
     /// A flat square floor (many vertices) with a wall standing on half of its edge.
