@@ -48,6 +48,9 @@ pub struct DecimateOptions {
     /// one removes one, so the result has `target_faces` or one fewer, unless the
     /// topology or the boundary forbid further collapses (see the report).
     pub target_faces: usize,
+    /// When set, decimation also stops once at most this many vertices remain
+    /// (whichever target is reached first): the orientation asks for ~10k vertices.
+    pub target_vertices: Option<usize>,
     /// How boundaries are kept.
     pub boundary: BoundaryPolicy,
     /// Collapses that turn any remaining face's normal by more than this, from its
@@ -69,6 +72,7 @@ impl Default for DecimateOptions {
     fn default() -> Self {
         DecimateOptions {
             target_faces: 20_000,
+            target_vertices: None,
             boundary: BoundaryPolicy::Weighted { weight: 100.0 },
             max_normal_change_deg: 60.0,
             quality_threshold: Some(0.3),
@@ -81,6 +85,12 @@ impl DecimateOptions {
     /// The default options with another target face count.
     pub fn with_target_faces(target_faces: usize) -> Self {
         DecimateOptions { target_faces, ..Default::default() }
+    }
+
+    /// The default options aiming at a vertex count instead (the face target is then
+    /// one face, so only the vertex target stops decimation).
+    pub fn with_target_vertices(target_vertices: usize) -> Self {
+        DecimateOptions { target_faces: 1, target_vertices: Some(target_vertices), ..Default::default() }
     }
 }
 
@@ -113,7 +123,7 @@ pub struct DecimateReport {
     pub boundary_edges_after: usize,
     /// Edges with more than two faces in the input (their vertices are frozen).
     pub non_manifold_edges: usize,
-    /// True when the target face count was reached.
+    /// True when the target face (or vertex) count was reached.
     pub reached_target: bool,
     /// Largest collapse cost accepted, as an RMS distance in mm (the square root of
     /// the quadric error divided by the quadric's total area weight).
@@ -141,8 +151,8 @@ pub fn decimate_with_options(mesh: &Mesh, options: &DecimateOptions) -> Result<(
     if mesh.is_point_cloud() {
         return Err(Error::InvalidArgument("decimation needs a mesh with faces, got a point cloud".into()));
     }
-    if options.target_faces == 0 {
-        return Err(Error::InvalidArgument("decimation target must be at least one face".into()));
+    if options.target_faces == 0 || options.target_vertices == Some(0) {
+        return Err(Error::InvalidArgument("decimation target must be at least one face and one vertex".into()));
     }
     if !(options.max_normal_change_deg > 0.0 && options.max_normal_change_deg <= 180.0) {
         return Err(Error::InvalidArgument(format!(
@@ -161,7 +171,7 @@ pub fn decimate_with_options(mesh: &Mesh, options: &DecimateOptions) -> Result<(
         return Err(Error::InvalidArgument(format!("boundary weight must be finite and >= 0, got {weight}")));
     }
 
-    if mesh.face_count() <= options.target_faces {
+    if mesh.face_count() <= options.target_faces || options.target_vertices.is_some_and(|n| mesh.vertex_count() <= n) {
         let report = DecimateReport {
             input_vertices: mesh.vertex_count(),
             input_faces: mesh.face_count(),
@@ -174,7 +184,7 @@ pub fn decimate_with_options(mesh: &Mesh, options: &DecimateOptions) -> Result<(
         return Ok((mesh.clone(), report));
     }
     let mut collapser = Collapser::new(mesh, options);
-    collapser.run(options.target_faces);
+    collapser.run(options.target_faces, options.target_vertices.unwrap_or(0));
     let (result, mut report) = collapser.finish();
     report.elapsed_seconds = started.elapsed().as_secs_f64();
     Ok((result, report))
@@ -318,7 +328,7 @@ impl Collapser {
             report,
         };
         let edges = collapser.build_quadrics(options.boundary);
-        collapser.push_initial_candidates(&edges);
+        collapser.push_initial_candidates(edges);
         collapser
     }
 
@@ -326,14 +336,14 @@ impl Collapser {
     /// non-manifold vertices, and sums the face and boundary plane quadrics. Returns
     /// the manifold edges (one or two faces) as `low << 32 | high` keys.
     fn build_quadrics(&mut self, boundary: BoundaryPolicy) -> Vec<u64> {
-        let mut edges: Vec<(u64, u32)> = Vec::with_capacity(3 * self.triangles.len());
-        for (face, &[a, b, c]) in self.triangles.iter().enumerate() {
-            for (slot, (from, to)) in [(a, b), (b, c), (c, a)].into_iter().enumerate() {
-                let key = (u64::from(from.min(to)) << 32) | u64::from(from.max(to));
-                edges.push((key, (3 * face + slot) as u32));
-            }
-        }
-        edges.par_sort_unstable_by_key(|&(key, _)| key);
+        // Keys only (8 bytes per half-edge): this is the largest temporary.
+        let mut edges: Vec<u64> = self
+            .triangles
+            .iter()
+            .flat_map(|&[a, b, c]| [(a, b), (b, c), (c, a)])
+            .map(|(from, to)| (u64::from(from.min(to)) << 32) | u64::from(from.max(to)))
+            .collect();
+        edges.par_sort_unstable();
 
         for triangle in &self.triangles {
             let [a, b, c] = triangle.map(|v| self.positions[v as usize]);
@@ -349,30 +359,30 @@ impl Collapser {
             }
         }
 
-        let mut manifold_edges = Vec::with_capacity(edges.len() / 2 + 1);
-        let mut run_start = 0;
+        // Classify each run of equal keys, and keep the manifold edges, once each, in
+        // the front of the same vector.
+        let (mut run_start, mut manifold_count) = (0, 0);
         while run_start < edges.len() {
-            let key = edges[run_start].0;
-            let run_end = run_start + edges[run_start..].iter().take_while(|(k, _)| *k == key).count();
-            let (low, high) = ((key >> 32) as usize, (key & 0xffff_ffff) as usize);
-            match run_end - run_start {
-                1 => {
+            let key = edges[run_start];
+            let run_end = run_start + edges[run_start..].iter().take_while(|&&k| k == key).count();
+            let (low, high) = ((key >> 32) as u32, key as u32);
+            if run_end - run_start > 2 {
+                self.report.non_manifold_edges += 1;
+                self.flags[low as usize] |= FROZEN;
+                self.flags[high as usize] |= FROZEN;
+            } else {
+                if run_end - run_start == 1 {
                     self.report.boundary_edges_before += 1;
-                    self.flags[low] |= BOUNDARY;
-                    self.flags[high] |= BOUNDARY;
-                    let corner = edges[run_start].1 as usize;
-                    self.add_boundary_quadric(corner, boundary);
-                    manifold_edges.push(key);
+                    self.flags[low as usize] |= BOUNDARY;
+                    self.flags[high as usize] |= BOUNDARY;
+                    self.add_boundary_quadric(low, high, boundary);
                 }
-                2 => manifold_edges.push(key),
-                _ => {
-                    self.report.non_manifold_edges += 1;
-                    self.flags[low] |= FROZEN;
-                    self.flags[high] |= FROZEN;
-                }
+                edges[manifold_count] = key;
+                manifold_count += 1;
             }
             run_start = run_end;
         }
+        edges.truncate(manifold_count);
         if boundary == BoundaryPolicy::Fixed {
             for flag in &mut self.flags {
                 if *flag & BOUNDARY != 0 {
@@ -381,16 +391,19 @@ impl Collapser {
             }
         }
         self.report.frozen_vertices = self.flags.iter().filter(|&&f| f & FROZEN != 0).count();
-        manifold_edges
+        edges
     }
 
-    /// The plane through the boundary edge starting at `corner`, perpendicular to its
-    /// face, added to both endpoints.
-    fn add_boundary_quadric(&mut self, corner: usize, boundary: BoundaryPolicy) {
+    /// The plane through the boundary edge `low`-`high`, perpendicular to its face,
+    /// added to both endpoints.
+    fn add_boundary_quadric(&mut self, low: u32, high: u32, boundary: BoundaryPolicy) {
         let BoundaryPolicy::Weighted { weight } = boundary else { return };
-        let (face, slot) = (corner / 3, corner % 3);
-        let triangle = self.triangles[face];
-        let [from, to, opposite] = [triangle[slot], triangle[(slot + 1) % 3], triangle[(slot + 2) % 3]];
+        let Some(triangle) = self.corners_of(low).map(|c| self.triangles[c as usize / 3]).find(|t| t.contains(&high))
+        else {
+            return;
+        };
+        let slot = (0..3).find(|&s| triangle[s] != low && triangle[s] != high).expect("a triangle has three vertices");
+        let [opposite, from, to] = [triangle[slot], triangle[(slot + 1) % 3], triangle[(slot + 2) % 3]];
         let [p, q, r] = [from, to, opposite].map(|v| self.positions[v as usize]);
         let edge = q - p;
         let face_normal = edge.cross(&(r - p));
@@ -401,17 +414,23 @@ impl Collapser {
     }
 
     /// Evaluates every edge once (in parallel: evaluation only reads) and heapifies.
-    fn push_initial_candidates(&mut self, edges: &[u64]) {
+    fn push_initial_candidates(&mut self, edges: Vec<u64>) {
         let this = &*self;
-        let candidates: Vec<Candidate> = edges
+        // Indexed, so rayon writes straight into the two vectors (an unindexed
+        // collect would hold a second copy). Edges between frozen vertices are queued
+        // at infinite cost and never collapse.
+        let (mut costs, mut candidates) = (Vec::new(), Vec::new());
+        edges
             .par_iter()
-            .filter_map(|&key| {
+            .map(|&key| {
                 let (first, second) = ((key >> 32) as u32, key as u32);
-                let placement = this.place(first, second)?;
-                Some(Candidate { cost: placement.cost as f32, first, second, pushed_at: 0 })
+                let cost = this.place(first, second).map_or(f32::INFINITY, |placement| placement.cost as f32);
+                (cost, [first, second, 0])
             })
-            .collect();
-        self.heap = CandidateQueue::from_candidates(candidates);
+            .unzip_into_vecs(&mut costs, &mut candidates);
+        drop(edges);
+        self.heap = CandidateQueue { costs, edges: candidates };
+        self.heap.heapify();
     }
 
     /// A mark value no vertex carries yet, for neighbourhood queries.
@@ -496,7 +515,7 @@ impl Collapser {
                 let input_normal = Vector::from(self.input_normals[corner as usize / 3].map(f64::from));
                 if !(after_squared > 1e-24 * before_squared)
                     || turned_too_far(before.dot(&after), before_squared * after_squared)
-                    || turned_too_far(input_normal.dot(&after), after_squared)
+                    || (input_normal != Vector::zeros() && turned_too_far(input_normal.dot(&after), after_squared))
                 {
                     return Err(Refusal);
                 }
@@ -567,10 +586,11 @@ impl Collapser {
         merged_degree >= if on_boundary { 2 } else { 3 }
     }
 
-    fn run(&mut self, target_faces: usize) {
+    fn run(&mut self, target_faces: usize, target_vertices: usize) {
         // The largest error / area ratio so far, as a fraction to avoid dividing in the loop.
         let mut max_error_area: (f64, f64) = (0.0, 1.0);
-        while self.live_faces > target_faces {
+        let mut live_vertices = self.first_corner.iter().filter(|&&c| c != NONE).count();
+        while self.live_faces > target_faces && live_vertices > target_vertices {
             let Some(candidate) = self.heap.pop() else { break };
             let (a, b) = (candidate.first, candidate.second);
             if !self.vertex_alive[a as usize]
@@ -600,10 +620,11 @@ impl Collapser {
                 max_error_area = (placement.error, area);
             }
             self.collapse(a, b, placement);
+            live_vertices -= 1;
             self.compact_heap_if_stale();
         }
         self.report.max_collapse_error_mm = (max_error_area.0 / max_error_area.1).sqrt();
-        self.report.reached_target = self.live_faces <= target_faces;
+        self.report.reached_target = self.live_faces <= target_faces || live_vertices <= target_vertices;
     }
 
     /// Merges `removed` into `kept` at the placement, then queues `kept`'s edges.
@@ -791,15 +812,6 @@ struct CandidateQueue {
 }
 
 impl CandidateQueue {
-    fn from_candidates(candidates: Vec<Candidate>) -> Self {
-        let mut queue = CandidateQueue {
-            costs: candidates.iter().map(|c| c.cost).collect(),
-            edges: candidates.iter().map(|c| [c.first, c.second, c.pushed_at]).collect(),
-        };
-        queue.heapify();
-        queue
-    }
-
     fn heapify(&mut self) {
         for index in (0..self.costs.len().div_ceil(4)).rev() {
             self.sift_down(index);

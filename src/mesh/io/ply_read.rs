@@ -298,50 +298,22 @@ struct BinaryBody<'a> {
     record_start: usize,
 }
 
-macro_rules! read_number {
-    ($self:ident, $type:ty) => {{
-        const SIZE: usize = std::mem::size_of::<$type>();
-        let Some(bytes) = $self.data.get($self.position..$self.position + SIZE) else {
-            return Err(Fault::End);
-        };
-        let bytes: [u8; SIZE] = bytes.try_into().expect("slice of SIZE bytes");
-        $self.position += SIZE;
-        if $self.big_endian { <$type>::from_be_bytes(bytes) } else { <$type>::from_le_bytes(bytes) }
-    }};
-}
-
 impl Body for BinaryBody<'_> {
     #[inline]
     fn float(&mut self, kind: ScalarType) -> std::result::Result<f64, Fault> {
-        Ok(match kind {
-            ScalarType::I8 => read_number!(self, i8) as f64,
-            ScalarType::U8 => read_number!(self, u8) as f64,
-            ScalarType::I16 => read_number!(self, i16) as f64,
-            ScalarType::U16 => read_number!(self, u16) as f64,
-            ScalarType::I32 => read_number!(self, i32) as f64,
-            ScalarType::U32 => read_number!(self, u32) as f64,
-            ScalarType::F32 => read_number!(self, f32) as f64,
-            ScalarType::F64 => read_number!(self, f64),
-        })
+        let big_endian = self.big_endian;
+        let bytes = self.take(kind.size()).ok_or(Fault::End)?;
+        Ok(decode_scalar(bytes, kind, big_endian))
     }
 
     #[inline]
     fn integer(&mut self, kind: ScalarType) -> std::result::Result<i64, Fault> {
-        Ok(match kind {
-            ScalarType::I8 => read_number!(self, i8) as i64,
-            ScalarType::U8 => read_number!(self, u8) as i64,
-            ScalarType::I16 => read_number!(self, i16) as i64,
-            ScalarType::U16 => read_number!(self, u16) as i64,
-            ScalarType::I32 => read_number!(self, i32) as i64,
-            ScalarType::U32 => read_number!(self, u32) as i64,
-            ScalarType::F32 | ScalarType::F64 => {
-                let value = self.float(kind)?;
-                if value.fract() != 0.0 || !value.is_finite() {
-                    return Err(Fault::NotAnInteger(value.to_string()));
-                }
-                value as i64
-            }
-        })
+        // Every integer type of PLY (at most 32 bits) is exact in an f64.
+        let value = self.float(kind)?;
+        if !kind.is_integer() && (value.fract() != 0.0 || !value.is_finite()) {
+            return Err(Fault::NotAnInteger(value.to_string()));
+        }
+        Ok(value as i64)
     }
 
     #[inline]
@@ -564,9 +536,13 @@ fn decode_scalar(bytes: &[u8], kind: ScalarType, big_endian: bool) -> f64 {
 }
 
 /// Converts a colour channel to 0-255: floats are 0-1, integers are scaled from their range.
+#[inline]
 fn colour_channel(value: f64, kind: ScalarType) -> u8 {
-    let scaled = if kind == ScalarType::U8 { value } else { value * 255.0 / kind.max_value() };
-    scaled.round().clamp(0.0, 255.0) as u8
+    if kind == ScalarType::U8 {
+        // Exact already (a uchar read as f64); `as` saturates what an ascii file overstates.
+        return value as u8;
+    }
+    (value * 255.0 / kind.max_value()).round().clamp(0.0, 255.0) as u8
 }
 
 /// Builds the error for a fault while reading `property` of element `index` of `element`.
