@@ -289,3 +289,49 @@ fn a_broken_vessel_is_its_fragments() {
     let parts: Vec<SherdPart> = vessel.fragments.iter().map(|f| f.truth.part).collect();
     assert!(parts.contains(&SherdPart::Rim), "{parts:?}");
 }
+
+#[test]
+fn break_faces_do_not_follow_the_grid() {
+    // On a staircase break every fracture face would face along the circumference
+    // (|n . e_theta| = 1) or lie in a meridian plane (n . e_theta = 0); smoothed breaks
+    // take every direction in between.
+    let options = SherdOptions { target_faces: 20_000, random_motion: false, sector_deg: [40.0, 60.0], ..SherdOptions::for_part(SherdPart::Body).ideal() };
+    let sherd = synthetic_sherd(21, &options);
+    let mesh = &sherd.mesh;
+    let (mut oblique, mut total) = (0usize, 0usize);
+    for face in 0..mesh.face_count() {
+        if sherd.face_kinds[face] != SurfaceKind::Fracture {
+            continue;
+        }
+        let [a, b, c] = mesh.triangle_points(face);
+        let centre = (a.coords + b.coords + c.coords) / 3.0;
+        let around = nalgebra::Vector3::new(-centre.y, centre.x, 0.0).normalize();
+        let normal = mesh.face_normal_scaled(face).normalize();
+        let along = normal.dot(&around).abs();
+        total += 1;
+        if (0.1..0.95).contains(&along) {
+            oblique += 1;
+        }
+    }
+    let fraction = oblique as f64 / total as f64;
+    println!("{oblique} of {total} fracture faces oblique");
+    assert!(fraction > 0.3, "only {oblique} of {total} fracture faces are oblique to the grid");
+}
+
+#[test]
+fn written_sherd_reads_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let sherd = synthetic_sherd(11, &SherdOptions { target_faces: 3_000, ..SherdOptions::for_part(SherdPart::Base) });
+    let path = sherd::synth::write_sherd(dir.path(), &sherd).unwrap();
+    assert_eq!(path, dir.path().join("sherd_11_base.ply"));
+    let mesh = sherd::mesh::io::read_mesh(&path).unwrap();
+    assert_eq!(mesh.triangles, sherd.mesh.triangles);
+    assert!(mesh.normals.is_some() && mesh.colors.is_some());
+    let truth = sherd::synth::read_truth(&dir.path().join("sherd_11_base.truth.json")).unwrap();
+    assert_eq!(truth.base_radius_mm, sherd.truth.base_radius_mm);
+    assert_eq!(truth.part, SherdPart::Base);
+    let broken = dir.path().join("broken.truth.json");
+    std::fs::write(&broken, "{\"axis\": 3}").unwrap();
+    let message = sherd::synth::read_truth(&broken).unwrap_err().to_string();
+    assert!(message.contains("broken.truth.json") && message.contains("line 1"), "{message}");
+}

@@ -222,7 +222,7 @@ pub fn most_informative_angle(mesh: &Mesh, axis: &Axis) -> f64 {
 
 /// Angular range `(low, high)` covered by the oriented vertices, radians around 0 (the
 /// centroid's direction). A fragment wrapping most of the way round gives `(-PI, PI)`.
-fn angular_extent(oriented: &[Point]) -> (f64, f64) {
+pub fn angular_extent(oriented: &[Point]) -> (f64, f64) {
     use std::f64::consts::PI;
     let (low, high) = oriented
         .iter()

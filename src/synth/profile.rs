@@ -51,9 +51,29 @@ impl VesselShape {
         VesselShape::Beaker,
     ];
 
+    /// The lower-case name used on the command line and in JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            VesselShape::Bowl => "bowl",
+            VesselShape::CarinatedBowl => "carinated_bowl",
+            VesselShape::Jar => "jar",
+            VesselShape::Plate => "plate",
+            VesselShape::Beaker => "beaker",
+            VesselShape::Globular => "globular",
+        }
+    }
+
     /// A random ordinary family.
     pub fn random(rng: &mut impl Rng) -> Self {
         Self::ORDINARY[rng.random_range(0..Self::ORDINARY.len())]
+    }
+}
+
+impl std::str::FromStr for VesselShape {
+    type Err = crate::Error;
+
+    fn from_str(text: &str) -> crate::Result<Self> {
+        super::truth::parse_name(text, &VesselShape::ALL, VesselShape::name, "vessel shape")
     }
 }
 

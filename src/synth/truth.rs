@@ -45,11 +45,7 @@ impl std::str::FromStr for SherdPart {
     type Err = crate::Error;
 
     fn from_str(text: &str) -> crate::Result<Self> {
-        let wanted = text.trim().to_ascii_lowercase().replace('-', "_");
-        SherdPart::ALL
-            .into_iter()
-            .find(|part| part.name() == wanted)
-            .ok_or_else(|| crate::Error::InvalidArgument(format!("unknown sherd part {text:?}: expected rim, body, base, rim_to_base or flat")))
+        parse_name(text, &SherdPart::ALL, SherdPart::name, "sherd part")
     }
 }
 
@@ -63,6 +59,38 @@ pub enum HardCase {
     NearSpherical,
     /// A piece about 15 mm across: too little curvature to measure.
     Tiny,
+}
+
+impl HardCase {
+    /// Every hard case, in a fixed order.
+    pub const ALL: [HardCase; 3] = [HardCase::FlatBase, HardCase::NearSpherical, HardCase::Tiny];
+
+    /// The lower-case name used on the command line and in JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            HardCase::FlatBase => "flat_base",
+            HardCase::NearSpherical => "near_spherical",
+            HardCase::Tiny => "tiny",
+        }
+    }
+}
+
+impl std::str::FromStr for HardCase {
+    type Err = crate::Error;
+
+    fn from_str(text: &str) -> crate::Result<Self> {
+        parse_name(text, &HardCase::ALL, HardCase::name, "hard case")
+    }
+}
+
+/// The value of `all` whose `name` is `text` (case and `-`/`_` ignored), or an error
+/// listing the names.
+pub(crate) fn parse_name<T: Copy>(text: &str, all: &[T], name: fn(T) -> &'static str, what: &str) -> crate::Result<T> {
+    let wanted = text.trim().to_ascii_lowercase().replace('-', "_");
+    all.iter().copied().find(|&value| name(value) == wanted).ok_or_else(|| {
+        let names: Vec<&str> = all.iter().map(|&value| name(value)).collect();
+        crate::Error::InvalidArgument(format!("unknown {what} {text:?}: expected one of {}", names.join(", ")))
+    })
 }
 
 /// What a vertex or face of a synthetic sherd lies on.
@@ -160,8 +188,10 @@ pub struct GroundTruth {
     pub vessel: VesselTruth,
     /// Vessel frame to scan frame.
     pub motion: RigidMotion,
-    /// The seed the sherd was generated from.
+    /// The seed the sherd (or its vessel) was generated from.
     pub seed: u64,
+    /// The fragment's index among its vessel's fragments ([`super::generate_vessel`]).
+    pub fragment_index: Option<usize>,
 }
 
 mod axis_as_record {

@@ -4,6 +4,7 @@
 //! Errors go to stderr with exit code 1 (2 for bad arguments, from clap).
 
 mod info;
+mod synth;
 
 use std::process::ExitCode;
 
@@ -21,12 +22,15 @@ struct Cli {
 enum Command {
     /// Describe a scan: counts, bounding box, units guess, attributes, what repair did.
     Info(info::InfoArgs),
+    /// Write synthetic sherds with known axes (NAME.ply + NAME.truth.json).
+    Synth(synth::SynthArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Info(arguments) => info::run(&arguments),
+        Command::Synth(arguments) => synth::run(&arguments),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
