@@ -513,7 +513,7 @@ impl Collapser {
                 let after = (a - position).cross(&(b - position));
                 let (before_squared, after_squared) = (before.norm_squared(), after.norm_squared());
                 let input_normal = Vector::from(self.input_normals[corner as usize / 3].map(f64::from));
-                if !(after_squared > 1e-24 * before_squared)
+                if after_squared <= 1e-24 * before_squared
                     || turned_too_far(before.dot(&after), before_squared * after_squared)
                     || (input_normal != Vector::zeros() && turned_too_far(input_normal.dot(&after), after_squared))
                 {
