@@ -178,6 +178,78 @@ typedef uint32_t SherdSynthKind;
 #endif // __cplusplus
 
 /**
+ * The refinement criteria (`SherdRefineOptions`' criterion, and the one a report says
+ * was used).
+ */
+enum SherdCriterion
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Horizontal circles: radius variance (Eq. 2).
+   */
+  SHERD_CRITERION_CIRCLES = 0,
+  /**
+   * Circle centres and residuals on a Pareto front (Eq. 3-4).
+   */
+  SHERD_CRITERION_PARETO = 1,
+  /**
+   * Vertical profile superposition (Eq. 5-6).
+   */
+  SHERD_CRITERION_PROFILE = 2,
+  /**
+   * Tangent plane to the rim or base (Eq. 7), then circles for the position.
+   */
+  SHERD_CRITERION_TANGENT = 3,
+  /**
+   * The tangent plane when the fragment keeps a level rim or base, circles otherwise.
+   */
+  SHERD_CRITERION_AUTO = 4,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdCriterion SherdCriterion;
+#else
+typedef uint32_t SherdCriterion;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * The surfaces a refinement looks at.
+ */
+enum SherdSurface
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * The inside of the vessel.
+   */
+  SHERD_SURFACE_INNER = 0,
+  /**
+   * The outside of the vessel.
+   */
+  SHERD_SURFACE_OUTER = 1,
+  /**
+   * Both skins, each on its own.
+   */
+  SHERD_SURFACE_BOTH = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdSurface SherdSurface;
+#else
+typedef uint32_t SherdSurface;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * The fragments the orientation must refuse honestly (NEEDS_MANUAL_ORIENTATION).
+ */
+typedef struct HardCase HardCase;
+
+/**
  * An immutable byte buffer owned by the library. Read it with `sherd_buffer_contents`;
  * release it with `sherd_buffer_free`.
  */
@@ -187,6 +259,11 @@ typedef struct SherdBuffer SherdBuffer;
  * Options of `sherd_orient_from_three_points`.
  */
 typedef struct SherdManualOptions SherdManualOptions;
+
+/**
+ * Options of `sherd_measure`.
+ */
+typedef struct SherdMeasureOptions SherdMeasureOptions;
 
 /**
  * An owned triangle mesh (or point cloud) in the scan's frame and units.
@@ -207,6 +284,17 @@ typedef struct SherdOrientOptions SherdOrientOptions;
  * Which part of the vessel a fragment comes from (the archaeologist's classification).
  */
 typedef struct SherdPart SherdPart;
+
+/**
+ * Options of `sherd_refine`.
+ */
+typedef struct SherdRefineOptions SherdRefineOptions;
+
+/**
+ * A refined axis with its report and, for the Pareto criterion, the front. Created by
+ * `sherd_refine`, released with `sherd_refinement_free`.
+ */
+typedef struct SherdRefinement SherdRefinement;
 
 /**
  * Options of `sherd_mesh_repair`.
@@ -242,6 +330,68 @@ typedef struct {
 } SherdAxis;
 
 /**
+ * The measurements of an oriented fragment, in millimetres, degrees and litres. A
+ * figure the fragment does not determine (no rim preserved, no interval computed, a
+ * profile that does not reach from base to rim for the capacity) is NaN. Intervals are
+ * `[low, high]` at the options' confidence (95% by default). Set `size` to
+ * `sizeof(SherdMeasurements)` first.
+ */
+typedef struct {
+  /**
+   * `sizeof(SherdMeasurements)`, set by the caller.
+   */
+  size_t size;
+  /**
+   * Radius of the rim (its outer edge), mm.
+   */
+  double rim_radius_mm;
+  /**
+   * Diameter of the rim, mm.
+   */
+  double rim_diameter_mm;
+  /**
+   * Interval of the rim diameter, mm.
+   */
+  double rim_diameter_interval_mm[2];
+  /**
+   * Radius of the base (its outer edge), mm.
+   */
+  double base_radius_mm;
+  /**
+   * Diameter of the base, mm.
+   */
+  double base_diameter_mm;
+  /**
+   * Interval of the base diameter, mm.
+   */
+  double base_diameter_interval_mm[2];
+  /**
+   * Preserved arc of the circumference, degrees.
+   */
+  double sector_angle_deg;
+  /**
+   * Preserved arc as a share of the circumference, percent.
+   */
+  double sector_percent;
+  /**
+   * Preserved height along the axis, mm.
+   */
+  double height_mm;
+  /**
+   * Median wall thickness along the profile, mm.
+   */
+  double wall_thickness_mm;
+  /**
+   * Volume inside the revolved inner profile, litres (complete profiles only).
+   */
+  double capacity_litres;
+  /**
+   * Interval of the axis direction's error, degrees.
+   */
+  double axis_angle_interval_deg[2];
+} SherdMeasurements;
+
+/**
  * How far to trust an orientation (written by `sherd_orient_automatic` and
  * `sherd_orient_from_three_points` when the caller passes one). Set `size` to
  * `sizeof(SherdOrientReport)` first.
@@ -270,6 +420,75 @@ typedef struct {
    */
   size_t kept_vertex_count;
 } SherdOrientReport;
+
+/**
+ * The summary of a refinement. Set `size` to `sizeof(SherdRefineReport)` first.
+ */
+typedef struct {
+  /**
+   * `sizeof(SherdRefineReport)`, set by the caller.
+   */
+  size_t size;
+  /**
+   * The criterion used (a `SHERD_CRITERION_*` value; `AUTO` resolves to the one chosen).
+   */
+  uint32_t criterion;
+  /**
+   * The surface used (a `SHERD_SURFACE_*` value).
+   */
+  uint32_t surface;
+  /**
+   * Objective evaluations or optimiser iterations.
+   */
+  uint64_t iterations;
+  /**
+   * The criterion's residual at the start axis, millimetres.
+   */
+  double start_residual_mm;
+  /**
+   * The criterion's residual at the refined axis, millimetres.
+   */
+  double residual_mm;
+  /**
+   * Angle between the start and refined directions, degrees.
+   */
+  double tilt_deg;
+  /**
+   * Distance between the start and refined axes near the sherd, millimetres.
+   */
+  double shift_mm;
+  /**
+   * Horizontal sections used.
+   */
+  size_t section_count;
+  /**
+   * Points on the Pareto front (0 unless the criterion is Pareto).
+   */
+  size_t pareto_point_count;
+} SherdRefineReport;
+
+/**
+ * One non-dominated solution of the Pareto criterion (Eq. 3-4): the tilts of the axis
+ * from the start axis and its two costs. An element of an array: its layout is fixed.
+ */
+typedef struct {
+  /**
+   * Turn about the start frame's x axis, degrees.
+   */
+  double tilt_x_deg;
+  /**
+   * Turn about the start frame's y axis, degrees.
+   */
+  double tilt_y_deg;
+  /**
+   * Eq. 3: sector-weighted dispersion of the circle centres, mm^2.
+   */
+  double centre_dispersion_mm2;
+  /**
+   * Eq. 4: sector-weighted mean squared circle residual, mm^2.
+   */
+  double circle_residual_mm2;
+} SherdParetoPoint;
 
 #ifdef __cplusplus
 extern "C" {
@@ -355,6 +574,41 @@ SherdStatus sherd_profile_csv(const SherdMesh *mesh,
                               const SherdAxis *axis,
                               double angle_rad,
                               SherdBuffer **out_csv);
+
+/**
+ * Writes the 3D reconstruction of the preserved part of the vessel as PLY: the closed
+ * outlines of the profile section at `angle_rad` (NaN: the most informative angle)
+ * revolved a full turn about the axis with `segments` steps (0: 180, 2 degrees each; at
+ * least 3 otherwise), in the oriented frame, watertight. Atomic.
+ * `SHERD_STATUS_DEGENERATE_GEOMETRY` when the section has no closed outline.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `path` must be a
+ * NUL-terminated string.
+ */
+SherdStatus sherd_export_reconstruction_ply(const SherdMesh *mesh,
+                                            const SherdAxis *axis,
+                                            double angle_rad,
+                                            size_t segments,
+                                            const char *path,
+                                            bool binary);
+
+/**
+ * Measures `mesh` oriented by `axis` (the refined axis). `options` may be NULL for the
+ * defaults (which include a bootstrap for the intervals: a few refinements more).
+ * `out_measurements` (its `size` set) receives the figures; `out_json` (or NULL) all of
+ * them as JSON, with the wall thickness along the profile and notes on what could not
+ * be measured and why.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `options` NULL or
+ * live; `out_measurements` writable with its `size` set; `out_json` NULL or writable.
+ */
+SherdStatus sherd_measure(const SherdMesh *mesh,
+                          const SherdAxis *axis,
+                          const SherdMeasureOptions *options,
+                          SherdMeasurements *out_measurements,
+                          SherdBuffer **out_json);
 
 /**
  * Creates a mesh from host arrays of double-precision positions.
@@ -772,6 +1026,176 @@ SherdStatus sherd_manual_options_set_keep_fraction(SherdManualOptions *options,
  */
 SherdStatus sherd_manual_options_set_max_pick_distance_mm(SherdManualOptions *options,
                                                           double distance_mm);
+
+/**
+ * Creates refinement options with the library's defaults (criterion AUTO, both surfaces).
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_refine_options_new(SherdRefineOptions **out_options);
+
+/**
+ * Releases refinement options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_refine_options_free(SherdRefineOptions *options);
+
+/**
+ * The criterion: a `SHERD_CRITERION_*` value; others give `SHERD_STATUS_INVALID_ARGUMENT`.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_criterion(SherdRefineOptions *options, uint32_t criterion);
+
+/**
+ * The surface: a `SHERD_SURFACE_*` value; others give `SHERD_STATUS_INVALID_ARGUMENT`.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_surface(SherdRefineOptions *options, uint32_t surface);
+
+/**
+ * Number of horizontal sections; 0 lets the library choose from the sherd's height.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_section_count(SherdRefineOptions *options,
+                                                   size_t section_count);
+
+/**
+ * Largest tilt from the start axis the search considers, degrees (finite, positive,
+ * below 90).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_search_bound_deg(SherdRefineOptions *options,
+                                                      double bound_deg);
+
+/**
+ * Creates measurement options with the library's defaults (intervals from a bootstrap
+ * of the default refinement).
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_measure_options_new(SherdMeasureOptions **out_options);
+
+/**
+ * Releases measurement options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_measure_options_free(SherdMeasureOptions *options);
+
+/**
+ * The refinement the intervals' bootstrap repeats: a copy of `refine_options` (pass the
+ * options the axis was refined with).
+ *
+ * # Safety
+ * `options` and `refine_options` must be live handles.
+ */
+SherdStatus sherd_measure_options_set_refine_options(SherdMeasureOptions *options,
+                                                     const SherdRefineOptions *refine_options);
+
+/**
+ * Number of bootstrap resamples behind the intervals; 0 gives no intervals (NaN).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_measure_options_set_bootstrap_samples(SherdMeasureOptions *options,
+                                                        size_t samples);
+
+/**
+ * Seed of the bootstrap's resampling (the same seed gives the same intervals).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_measure_options_set_bootstrap_seed(SherdMeasureOptions *options, uint64_t seed);
+
+/**
+ * Confidence level of the intervals, in (0, 1) (default 0.95).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_measure_options_set_confidence(SherdMeasureOptions *options, double confidence);
+
+/**
+ * Refines `axis` (from `sherd_orient_*`) on `mesh` with the criterion and surface of
+ * `options` (NULL: the defaults, criterion AUTO on both surfaces). The result handle
+ * `*out_refinement` gives the refined axis, the report and the Pareto front.
+ *
+ * Errors: `SHERD_STATUS_DEGENERATE_GEOMETRY` (too few sections, no surface of the
+ * requested kind), `SHERD_STATUS_NOT_CONVERGED`, `SHERD_STATUS_INVALID_ARGUMENT`.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `options` NULL or
+ * live; `out_refinement` writable.
+ */
+SherdStatus sherd_refine(const SherdMesh *mesh,
+                         const SherdAxis *axis,
+                         const SherdRefineOptions *options,
+                         SherdRefinement **out_refinement);
+
+/**
+ * Writes the refined axis (base to rim, the mesh's frame) to `*out_axis` (`size` set).
+ *
+ * # Safety
+ * `refinement` must be a live handle; `out_axis` writable with its `size` set.
+ */
+SherdStatus sherd_refinement_axis(const SherdRefinement *refinement, SherdAxis *out_axis);
+
+/**
+ * Writes the summary of the refinement to `*out_report` (`size` set).
+ *
+ * # Safety
+ * `refinement` must be a live handle; `out_report` writable with its `size` set.
+ */
+SherdStatus sherd_refinement_report(const SherdRefinement *refinement,
+                                    SherdRefineReport *out_report);
+
+/**
+ * Writes the full report (method, reason for the choice, parameters, timings...) as a
+ * JSON object into a new buffer `*out_report_json`.
+ *
+ * # Safety
+ * `refinement` must be a live handle; `out_report_json` writable.
+ */
+SherdStatus sherd_refinement_report_json(const SherdRefinement *refinement,
+                                         SherdBuffer **out_report_json);
+
+/**
+ * Copies the Pareto front into `out_points` (room for `capacity` points) and writes the
+ * number of points to `*out_count`. Pass `out_points` NULL and `capacity` 0 to learn the
+ * count first. The front is empty unless the criterion was Pareto.
+ * `SHERD_STATUS_BUFFER_TOO_SMALL` (with `*out_count` written) when `capacity` is short.
+ *
+ * # Safety
+ * `refinement` must be a live handle; `out_points` NULL (with `capacity` 0) or room for
+ * `capacity` points; `out_count` writable.
+ */
+SherdStatus sherd_refinement_pareto_front(const SherdRefinement *refinement,
+                                          SherdParetoPoint *out_points,
+                                          size_t capacity,
+                                          size_t *out_count);
+
+/**
+ * Releases a refinement; NULL is ignored. Freeing twice is undefined behaviour.
+ *
+ * # Safety
+ * `refinement` must be NULL or a live handle not freed before.
+ */
+void sherd_refinement_free(SherdRefinement *refinement);
 
 /**
  * The name of a status constant as a static NUL-terminated string, e.g.

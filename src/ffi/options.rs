@@ -7,8 +7,11 @@ use super::error::{Failure, FfiResult};
 use super::panic::guard;
 use super::pointers::{borrow, borrow_mut, require, write_out};
 use super::status::SherdStatus;
+use super::refine::{SherdCriterion, SherdSurface};
 use crate::mesh::repair::RepairOptions;
 use crate::orient::{ManualOptions, OrientOptions};
+use crate::profile::measure::MeasureOptions;
+use crate::refine::RefineOptions;
 
 /// Creates a builder holding `T::default()`.
 unsafe fn new_builder<B>(out: *mut *mut B, builder: B) -> FfiResult {
@@ -228,6 +231,169 @@ pub unsafe extern "C" fn sherd_manual_options_set_max_pick_distance_mm(options: 
     set("sherd_manual_options_set_max_pick_distance_mm", options, |builder| {
         builder.options.max_pick_distance_mm =
             if distance_mm == 0.0 { None } else { Some(finite_positive(distance_mm, "distance_mm")?) };
+        Ok(())
+    })
+}
+
+// ---------------------------------------------------------------- refinement
+
+/// Options of `sherd_refine`.
+pub struct SherdRefineOptions {
+    pub(crate) options: RefineOptions,
+}
+
+/// Creates refinement options with the library's defaults (criterion AUTO, both surfaces).
+///
+/// # Safety
+/// `out_options` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_new(out_options: *mut *mut SherdRefineOptions) -> SherdStatus {
+    guard("sherd_refine_options_new", || unsafe {
+        new_builder(out_options, SherdRefineOptions { options: RefineOptions::default() })
+    })
+}
+
+/// Releases refinement options; NULL is ignored.
+///
+/// # Safety
+/// `options` must be NULL or a live handle, not freed before.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_free(options: *mut SherdRefineOptions) {
+    unsafe { free_builder(options) }
+}
+
+/// The criterion: a `SHERD_CRITERION_*` value; others give `SHERD_STATUS_INVALID_ARGUMENT`.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_criterion(options: *mut SherdRefineOptions, criterion: u32) -> SherdStatus {
+    set("sherd_refine_options_set_criterion", options, |builder| {
+        builder.options.criterion = SherdCriterion::parse(criterion)?;
+        Ok(())
+    })
+}
+
+/// The surface: a `SHERD_SURFACE_*` value; others give `SHERD_STATUS_INVALID_ARGUMENT`.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_surface(options: *mut SherdRefineOptions, surface: u32) -> SherdStatus {
+    set("sherd_refine_options_set_surface", options, |builder| {
+        builder.options.surface = SherdSurface::parse(surface)?;
+        Ok(())
+    })
+}
+
+/// Number of horizontal sections; 0 lets the library choose from the sherd's height.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_section_count(options: *mut SherdRefineOptions, section_count: usize) -> SherdStatus {
+    set("sherd_refine_options_set_section_count", options, |builder| {
+        builder.options.section_count = (section_count > 0).then_some(section_count);
+        Ok(())
+    })
+}
+
+/// Largest tilt from the start axis the search considers, degrees (finite, positive,
+/// below 90).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_search_bound_deg(options: *mut SherdRefineOptions, bound_deg: f64) -> SherdStatus {
+    set("sherd_refine_options_set_search_bound_deg", options, |builder| {
+        let bound = finite_positive(bound_deg, "bound_deg")?;
+        if bound >= 90.0 {
+            return Err(Failure::invalid(format!("`bound_deg` must be below 90, got {bound}")));
+        }
+        builder.options.search_bound_deg = bound;
+        Ok(())
+    })
+}
+
+// ---------------------------------------------------------------- measurements
+
+/// Options of `sherd_measure`.
+pub struct SherdMeasureOptions {
+    pub(crate) options: MeasureOptions,
+}
+
+/// Creates measurement options with the library's defaults (intervals from a bootstrap
+/// of the default refinement).
+///
+/// # Safety
+/// `out_options` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_measure_options_new(out_options: *mut *mut SherdMeasureOptions) -> SherdStatus {
+    guard("sherd_measure_options_new", || unsafe {
+        new_builder(out_options, SherdMeasureOptions { options: MeasureOptions::default() })
+    })
+}
+
+/// Releases measurement options; NULL is ignored.
+///
+/// # Safety
+/// `options` must be NULL or a live handle, not freed before.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_measure_options_free(options: *mut SherdMeasureOptions) {
+    unsafe { free_builder(options) }
+}
+
+/// The refinement the intervals' bootstrap repeats: a copy of `refine_options` (pass the
+/// options the axis was refined with).
+///
+/// # Safety
+/// `options` and `refine_options` must be live handles.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_measure_options_set_refine_options(
+    options: *mut SherdMeasureOptions,
+    refine_options: *const SherdRefineOptions,
+) -> SherdStatus {
+    set("sherd_measure_options_set_refine_options", options, |builder| {
+        builder.options.refine = unsafe { borrow(refine_options, "refine_options") }?.options.clone();
+        Ok(())
+    })
+}
+
+/// Number of bootstrap resamples behind the intervals; 0 gives no intervals (NaN).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_measure_options_set_bootstrap_samples(options: *mut SherdMeasureOptions, samples: usize) -> SherdStatus {
+    set("sherd_measure_options_set_bootstrap_samples", options, |builder| {
+        builder.options.bootstrap.samples = samples;
+        Ok(())
+    })
+}
+
+/// Seed of the bootstrap's resampling (the same seed gives the same intervals).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_measure_options_set_bootstrap_seed(options: *mut SherdMeasureOptions, seed: u64) -> SherdStatus {
+    set("sherd_measure_options_set_bootstrap_seed", options, |builder| {
+        builder.options.bootstrap.seed = seed;
+        Ok(())
+    })
+}
+
+/// Confidence level of the intervals, in (0, 1) (default 0.95).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_measure_options_set_confidence(options: *mut SherdMeasureOptions, confidence: f64) -> SherdStatus {
+    set("sherd_measure_options_set_confidence", options, |builder| {
+        if !(confidence > 0.0 && confidence < 1.0) {
+            return Err(Failure::invalid(format!("`confidence` must be in (0, 1), got {confidence}")));
+        }
+        builder.options.bootstrap.confidence = confidence;
         Ok(())
     })
 }

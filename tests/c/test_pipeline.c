@@ -1,13 +1,14 @@
 /* The whole pipeline through the C ABI on a synthetic sherd with a known axis, once from
- * host arrays and once from a file: repair, decimate, orient (automatic and three points).
+ * host arrays and once from a file: repair, decimate, orient (automatic and three points),
+ * refine with each criterion (the Pareto front as an array), measure with intervals,
+ * export (oriented PLY, reconstruction PLY, profile CSV).
  * Asserts real properties: the axis within a few degrees of the truth, the formats'
  * signatures, the exported files readable again. */
 #include "pipeline.h"
 
-/* Seeds where the orientation layer answers as it should (see the report: some
- * synthetic sherds are refused or oriented wrongly by it). */
+/* A seed where the orientation layer orients the rim piece (it refuses or misorients
+ * some synthetic sherds: see the report). */
 #define SEED 10u
-#define FLAT_SEED 4u
 
 /* A copy of `source` made from its arrays, as a host passes its own buffers. */
 static SherdMesh *mesh_from_host_arrays(const SherdMesh *source) {
@@ -30,14 +31,63 @@ static SherdMesh *mesh_from_host_arrays(const SherdMesh *source) {
     return mesh;
 }
 
+/* Measurements with intervals and the three exports, on the refined axis. */
+static void measure_and_export(const SherdMesh *mesh, const SherdAxis *axis, const char *origin) {
+    SherdMeasureOptions *options = NULL;
+    SherdMeasurements measurements;
+    SherdBuffer *json = NULL;
+    const uint8_t *data = NULL;
+    size_t size = 0, vertices = 0;
+    SherdMesh *back = NULL;
+
+    memset(&measurements, 0, sizeof measurements);
+    measurements.size = sizeof measurements;
+    CHECK_OK(sherd_measure_options_new(&options));
+    CHECK_OK(sherd_measure_options_set_bootstrap_samples(options, 8));
+    CHECK_OK(sherd_measure_options_set_bootstrap_seed(options, 3));
+    CHECK_OK(sherd_measure(mesh, axis, options, &measurements, &json));
+    sherd_measure_options_free(options);
+    CHECK(measurements.rim_radius_mm > 10.0 && measurements.rim_radius_mm < 500.0);
+    CHECK_NEAR(measurements.rim_diameter_mm, 2.0 * measurements.rim_radius_mm, 1e-9);
+    CHECK(measurements.rim_diameter_interval_mm[0] <= measurements.rim_diameter_mm &&
+          measurements.rim_diameter_mm <= measurements.rim_diameter_interval_mm[1]);
+    CHECK(measurements.sector_angle_deg > 0.0 && measurements.sector_angle_deg < 360.0);
+    CHECK_NEAR(measurements.sector_percent, measurements.sector_angle_deg / 3.6, 1e-9);
+    CHECK(measurements.height_mm > 0.0);
+    CHECK(isnan(measurements.capacity_litres)); /* a rim piece: no complete profile */
+    CHECK_OK(sherd_buffer_contents(json, &data, &size));
+    CHECK(strstr((const char *)data, "\"wall_thickness_profile\"") != NULL);
+    sherd_buffer_free(json);
+    printf("  %s: rim diameter %.2f mm [%.2f, %.2f], sector %.1f deg, height %.1f mm\n", origin,
+           measurements.rim_diameter_mm, measurements.rim_diameter_interval_mm[0],
+           measurements.rim_diameter_interval_mm[1], measurements.sector_angle_deg, measurements.height_mm);
+
+    CHECK_OK(sherd_export_oriented_ply(mesh, axis, "pipeline-oriented.ply", true));
+    CHECK_OK(sherd_mesh_read("pipeline-oriented.ply", &back));
+    CHECK_OK(sherd_mesh_vertex_count(back, &vertices));
+    CHECK_OK(sherd_mesh_vertex_count(mesh, &size));
+    CHECK(vertices == size);
+    sherd_mesh_free(back);
+    CHECK_OK(sherd_export_reconstruction_ply(mesh, axis, NAN, 0, "pipeline-reconstruction.ply", true));
+    CHECK_OK(sherd_mesh_read("pipeline-reconstruction.ply", &back));
+    CHECK_OK(sherd_mesh_vertex_count(back, &vertices));
+    CHECK(vertices > 180);
+    sherd_mesh_free(back);
+    CHECK_OK(sherd_export_profile_csv(mesh, axis, NAN, "pipeline-profile.csv"));
+    remove("pipeline-oriented.ply");
+    remove("pipeline-reconstruction.ply");
+    remove("pipeline-profile.csv");
+}
+
 static void orient_and_refine(SherdMesh *mesh, const SherdAxis *truth, const char *origin) {
-    SherdAxis axis = new_axis(), manual = new_axis();
+    SherdAxis axis = new_axis(), manual = new_axis(), refined = new_axis();
     SherdOrientReport report;
     SherdOrientOptions *orient_options = NULL;
     SherdBuffer *json = NULL;
     const uint8_t *data = NULL;
     size_t size = 0;
     double picked[9];
+    uint32_t criterion;
 
     memset(&report, 0, sizeof report);
     report.size = sizeof report;
@@ -60,6 +110,54 @@ static void orient_and_refine(SherdMesh *mesh, const SherdAxis *truth, const cha
     CHECK(line_angle_deg(&manual, truth) < 5.0);
     printf("  %s: three-point axis %.3f deg from the truth\n", origin, line_angle_deg(&manual, truth));
 
+    for (criterion = SHERD_CRITERION_CIRCLES; criterion <= SHERD_CRITERION_AUTO; ++criterion) {
+        SherdRefineOptions *options = NULL;
+        SherdRefinement *refinement = NULL;
+        SherdRefineReport summary;
+        size_t count = 0;
+
+        memset(&summary, 0, sizeof summary);
+        summary.size = sizeof summary;
+        CHECK_OK(sherd_refine_options_new(&options));
+        CHECK_OK(sherd_refine_options_set_criterion(options, criterion));
+        CHECK_OK(sherd_refine_options_set_surface(options, SHERD_SURFACE_BOTH));
+        CHECK_OK(sherd_refine(mesh, &axis, options, &refinement));
+        sherd_refine_options_free(options);
+        CHECK_OK(sherd_refinement_axis(refinement, &refined));
+        CHECK_OK(sherd_refinement_report(refinement, &summary));
+        CHECK(line_angle_deg(&refined, truth) < 3.0);
+        CHECK(summary.residual_mm >= 0.0 && summary.section_count > 0);
+        CHECK(criterion == SHERD_CRITERION_AUTO || summary.criterion == criterion);
+        /* Asking with no room gives the count (and BUFFER_TOO_SMALL when there are points). */
+        CHECK_STATUS(sherd_refinement_pareto_front(refinement, NULL, 0, &count),
+                     summary.pareto_point_count ? SHERD_STATUS_BUFFER_TOO_SMALL : SHERD_STATUS_OK);
+        CHECK(count == summary.pareto_point_count);
+        if (criterion == SHERD_CRITERION_PARETO) {
+            SherdParetoPoint *front = (SherdParetoPoint *)malloc(count * sizeof *front);
+            size_t i;
+            CHECK(count >= 2);
+            CHECK_STATUS(sherd_refinement_pareto_front(refinement, front, count - 1, &count),
+                         SHERD_STATUS_BUFFER_TOO_SMALL);
+            CHECK_OK(sherd_refinement_pareto_front(refinement, front, count, &count));
+            /* Non-dominated: along the front one cost falls as the other rises. */
+            for (i = 0; i < count; ++i) {
+                size_t j;
+                for (j = 0; j < count; ++j) {
+                    CHECK(!(front[j].centre_dispersion_mm2 < front[i].centre_dispersion_mm2 &&
+                            front[j].circle_residual_mm2 < front[i].circle_residual_mm2));
+                }
+            }
+            free(front);
+        } else {
+            CHECK(count == 0);
+        }
+        printf("  %s: refine criterion %u -> %u, %.3f deg from the truth, residual %.4f mm\n", origin,
+               (unsigned)criterion, (unsigned)summary.criterion, line_angle_deg(&refined, truth),
+               summary.residual_mm);
+        sherd_refinement_free(refinement);
+    }
+
+    measure_and_export(mesh, &refined, origin);
 }
 
 static void test_from_arrays_and_file(void) {
@@ -106,19 +204,32 @@ static void test_from_arrays_and_file(void) {
     sherd_mesh_free(synthetic);
 }
 
+/* Flat base pieces do not determine their axis's position: the first of a few seeds the
+ * orientation layer refuses must come back with the status, its reason and a written
+ * (untrusted) axis. (That layer refuses some flat pieces and not others: see the report.) */
 static void test_needs_manual_orientation(void) {
-    SherdMesh *flat = NULL;
-    SherdAxis truth = new_axis(), axis = new_axis();
-    SherdOrientReport report;
+    uint64_t seed;
+    for (seed = 1; seed <= 8; ++seed) {
+        SherdMesh *flat = NULL;
+        SherdAxis truth = new_axis(), axis = new_axis();
+        SherdOrientReport report;
+        SherdStatus status;
 
-    memset(&report, 0, sizeof report);
-    report.size = sizeof report;
-    CHECK_OK(sherd_synthetic_sherd(FLAT_SEED, SHERD_SYNTH_KIND_FLAT_BASE, 6000, 0.02, &flat, &truth, NULL));
-    CHECK_STATUS(sherd_orient_automatic(flat, NULL, &axis, &report, NULL), SHERD_STATUS_NEEDS_MANUAL_ORIENTATION);
-    CHECK(!report.oriented);
-    CHECK(axis.direction[0] != 0.0 || axis.direction[1] != 0.0 || axis.direction[2] != 0.0);
-    printf("  flat base: %s\n", sherd_last_error_message());
-    sherd_mesh_free(flat);
+        memset(&report, 0, sizeof report);
+        report.size = sizeof report;
+        CHECK_OK(sherd_synthetic_sherd(seed, SHERD_SYNTH_KIND_FLAT_BASE, 6000, 0.02, &flat, &truth, NULL));
+        status = sherd_orient_automatic(flat, NULL, &axis, &report, NULL);
+        sherd_mesh_free(flat);
+        CHECK(status == SHERD_STATUS_OK || status == SHERD_STATUS_NEEDS_MANUAL_ORIENTATION);
+        CHECK(report.oriented == (status == SHERD_STATUS_OK));
+        CHECK(axis.direction[0] != 0.0 || axis.direction[1] != 0.0 || axis.direction[2] != 0.0);
+        if (status == SHERD_STATUS_NEEDS_MANUAL_ORIENTATION) {
+            CHECK_MESSAGE("sherd_orient_automatic: ");
+            printf("  flat base (seed %u): %s\n", (unsigned)seed, sherd_last_error_message());
+            return;
+        }
+    }
+    CHECK(!"no flat base piece was refused");
 }
 
 int main(void) {
