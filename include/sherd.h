@@ -128,14 +128,183 @@ typedef uint32_t SherdMeshAttribute;
 #endif // __cplusplus
 
 /**
+ * Which kind of synthetic fragment to make.
+ */
+enum SherdSynthKind
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Rim, body, base or complete profile, drawn at random.
+   */
+  SHERD_SYNTH_KIND_RANDOM = 0,
+  /**
+   * A piece with part of the rim.
+   */
+  SHERD_SYNTH_KIND_RIM = 1,
+  /**
+   * Wall only.
+   */
+  SHERD_SYNTH_KIND_BODY = 2,
+  /**
+   * A piece with the base's edge.
+   */
+  SHERD_SYNTH_KIND_BASE = 3,
+  /**
+   * A complete profile, rim to base.
+   */
+  SHERD_SYNTH_KIND_RIM_TO_BASE = 4,
+  /**
+   * A piece of the flat base (its axis position is not determined: orientation must
+   * refuse it).
+   */
+  SHERD_SYNTH_KIND_FLAT_BASE = 5,
+  /**
+   * A piece of a spherical body zone (every line through the centre is an axis).
+   */
+  SHERD_SYNTH_KIND_NEAR_SPHERICAL = 6,
+  /**
+   * A piece about 15 mm across (too little curvature to measure).
+   */
+  SHERD_SYNTH_KIND_TINY = 7,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdSynthKind SherdSynthKind;
+#else
+typedef uint32_t SherdSynthKind;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * The refinement criteria (`SherdRefineOptions`' criterion, and the one a report says
+ * was used).
+ */
+enum SherdCriterion
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Horizontal circles: radius variance (Eq. 2).
+   */
+  SHERD_CRITERION_CIRCLES = 0,
+  /**
+   * Circle centres and residuals on a Pareto front (Eq. 3-4).
+   */
+  SHERD_CRITERION_PARETO = 1,
+  /**
+   * Vertical profile superposition (Eq. 5-6).
+   */
+  SHERD_CRITERION_PROFILE = 2,
+  /**
+   * Tangent plane to the rim or base (Eq. 7), then circles for the position.
+   */
+  SHERD_CRITERION_TANGENT = 3,
+  /**
+   * The tangent plane when the fragment keeps a level rim or base, circles otherwise.
+   */
+  SHERD_CRITERION_AUTO = 4,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdCriterion SherdCriterion;
+#else
+typedef uint32_t SherdCriterion;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * The surfaces a refinement looks at.
+ */
+enum SherdSurface
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * The inside of the vessel.
+   */
+  SHERD_SURFACE_INNER = 0,
+  /**
+   * The outside of the vessel.
+   */
+  SHERD_SURFACE_OUTER = 1,
+  /**
+   * Both skins, each on its own.
+   */
+  SHERD_SURFACE_BOTH = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdSurface SherdSurface;
+#else
+typedef uint32_t SherdSurface;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * The fragments the orientation must refuse honestly (NEEDS_MANUAL_ORIENTATION).
+ */
+typedef struct HardCase HardCase;
+
+/**
+ * An immutable byte buffer owned by the library. Read it with `sherd_buffer_contents`;
+ * release it with `sherd_buffer_free`.
+ */
+typedef struct SherdBuffer SherdBuffer;
+
+/**
+ * Options of `sherd_orient_from_three_points`.
+ */
+typedef struct SherdManualOptions SherdManualOptions;
+
+/**
+ * Options of `sherd_measure`.
+ */
+typedef struct SherdMeasureOptions SherdMeasureOptions;
+
+/**
  * An owned triangle mesh (or point cloud) in the scan's frame and units.
  *
- * Create it with `sherd_mesh_from_arrays`, `sherd_mesh_from_arrays_f32` or
- * `sherd_mesh_clone`; release it with `sherd_mesh_free`. A mesh may be used from any
+ * Create it with `sherd_mesh_from_arrays`, `sherd_mesh_from_arrays_f32`,
+ * `sherd_mesh_read` or `sherd_mesh_clone`; release it with `sherd_mesh_free`. A mesh may be used from any
  * thread, and different meshes concurrently; one mesh must not be modified (the
  * `_set_` functions) while another thread uses it.
  */
 typedef struct SherdMesh SherdMesh;
+
+/**
+ * Options of `sherd_orient_automatic`.
+ */
+typedef struct SherdOrientOptions SherdOrientOptions;
+
+/**
+ * Which part of the vessel a fragment comes from (the archaeologist's classification).
+ */
+typedef struct SherdPart SherdPart;
+
+/**
+ * Options of `sherd_refine`.
+ */
+typedef struct SherdRefineOptions SherdRefineOptions;
+
+/**
+ * A refined axis with its report and, for the Pareto criterion, the front. Created by
+ * `sherd_refine`, released with `sherd_refinement_free`.
+ */
+typedef struct SherdRefinement SherdRefinement;
+
+/**
+ * Options of `sherd_mesh_repair`.
+ */
+typedef struct SherdRepairOptions SherdRepairOptions;
+
+/**
+ * The vessel families the generator draws from.
+ */
+typedef struct VesselShape VesselShape;
 
 /**
  * A vessel's rotation axis in the scan's frame and units: a point on it and a unit
@@ -160,9 +329,190 @@ typedef struct {
   double direction[3];
 } SherdAxis;
 
+/**
+ * The measurements of an oriented fragment, in millimetres, degrees and litres. A
+ * figure the fragment does not determine (no rim preserved, no interval computed, a
+ * profile that does not reach from base to rim for the capacity) is NaN. Intervals are
+ * `[low, high]` at the options' confidence (95% by default). Set `size` to
+ * `sizeof(SherdMeasurements)` first.
+ */
+typedef struct {
+  /**
+   * `sizeof(SherdMeasurements)`, set by the caller.
+   */
+  size_t size;
+  /**
+   * Radius of the rim (its outer edge), mm.
+   */
+  double rim_radius_mm;
+  /**
+   * Diameter of the rim, mm.
+   */
+  double rim_diameter_mm;
+  /**
+   * Interval of the rim diameter, mm.
+   */
+  double rim_diameter_interval_mm[2];
+  /**
+   * Radius of the base (its outer edge), mm.
+   */
+  double base_radius_mm;
+  /**
+   * Diameter of the base, mm.
+   */
+  double base_diameter_mm;
+  /**
+   * Interval of the base diameter, mm.
+   */
+  double base_diameter_interval_mm[2];
+  /**
+   * Preserved arc of the circumference, degrees.
+   */
+  double sector_angle_deg;
+  /**
+   * Preserved arc as a share of the circumference, percent.
+   */
+  double sector_percent;
+  /**
+   * Preserved height along the axis, mm.
+   */
+  double height_mm;
+  /**
+   * Median wall thickness along the profile, mm.
+   */
+  double wall_thickness_mm;
+  /**
+   * Volume inside the revolved inner profile, litres (complete profiles only).
+   */
+  double capacity_litres;
+  /**
+   * Interval of the axis direction's error, degrees.
+   */
+  double axis_angle_interval_deg[2];
+} SherdMeasurements;
+
+/**
+ * How far to trust an orientation (written by `sherd_orient_automatic` and
+ * `sherd_orient_from_three_points` when the caller passes one). Set `size` to
+ * `sizeof(SherdOrientReport)` first.
+ */
+typedef struct {
+  /**
+   * `sizeof(SherdOrientReport)`, set by the caller.
+   */
+  size_t size;
+  /**
+   * True when the data determine the axis; false with
+   * `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION`.
+   */
+  bool oriented;
+  /**
+   * Calibrated uncertainty of the direction, degrees (NaN for a manual axis).
+   */
+  double angle_uncertainty_deg;
+  /**
+   * Calibrated uncertainty of the axis position near the sherd, millimetres (NaN for a
+   * manual axis).
+   */
+  double position_uncertainty_mm;
+  /**
+   * Vertices of the working copy kept as the surface of revolution.
+   */
+  size_t kept_vertex_count;
+} SherdOrientReport;
+
+/**
+ * The summary of a refinement. Set `size` to `sizeof(SherdRefineReport)` first.
+ */
+typedef struct {
+  /**
+   * `sizeof(SherdRefineReport)`, set by the caller.
+   */
+  size_t size;
+  /**
+   * The criterion used (a `SHERD_CRITERION_*` value; `AUTO` resolves to the one chosen).
+   */
+  uint32_t criterion;
+  /**
+   * The surface used (a `SHERD_SURFACE_*` value).
+   */
+  uint32_t surface;
+  /**
+   * Objective evaluations or optimiser iterations.
+   */
+  uint64_t iterations;
+  /**
+   * The criterion's residual at the start axis, millimetres.
+   */
+  double start_residual_mm;
+  /**
+   * The criterion's residual at the refined axis, millimetres.
+   */
+  double residual_mm;
+  /**
+   * Angle between the start and refined directions, degrees.
+   */
+  double tilt_deg;
+  /**
+   * Distance between the start and refined axes near the sherd, millimetres.
+   */
+  double shift_mm;
+  /**
+   * Horizontal sections used.
+   */
+  size_t section_count;
+  /**
+   * Points on the Pareto front (0 unless the criterion is Pareto).
+   */
+  size_t pareto_point_count;
+} SherdRefineReport;
+
+/**
+ * One non-dominated solution of the Pareto criterion (Eq. 3-4): the tilts of the axis
+ * from the start axis and its two costs. An element of an array: its layout is fixed.
+ */
+typedef struct {
+  /**
+   * Turn about the start frame's x axis, degrees.
+   */
+  double tilt_x_deg;
+  /**
+   * Turn about the start frame's y axis, degrees.
+   */
+  double tilt_y_deg;
+  /**
+   * Eq. 3: sector-weighted dispersion of the circle centres, mm^2.
+   */
+  double centre_dispersion_mm2;
+  /**
+   * Eq. 4: sector-weighted mean squared circle residual, mm^2.
+   */
+  double circle_residual_mm2;
+} SherdParetoPoint;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
+
+/**
+ * Writes a pointer to the buffer's first byte to `*out_data` and its length in bytes
+ * to `*out_size`. The pointer stays valid until `sherd_buffer_free`. Text buffers (JSON
+ * reports) are followed by a NUL byte not counted in the size.
+ *
+ * # Safety
+ * `buffer` must be a live handle; `out_data` and `out_size` must be writable.
+ */
+SherdStatus sherd_buffer_contents(const SherdBuffer *buffer,
+                                  const uint8_t **out_data,
+                                  size_t *out_size);
+
+/**
+ * Releases a buffer. NULL is accepted and ignored; freeing twice is undefined behaviour.
+ *
+ * # Safety
+ * `buffer` must be NULL or a handle from this library not freed before.
+ */
+void sherd_buffer_free(SherdBuffer *buffer);
 
 /**
  * The message of the most recent call on this thread that did not return
@@ -174,6 +524,91 @@ extern "C" {
  * its own message, so concurrent calls on other threads do not disturb it.
  */
 const char *sherd_last_error_message(void);
+
+/**
+ * Writes the mesh moved into the oriented frame (axis on z, base down, the fragment's
+ * centroid on +x: `sherd_mesh_oriented_transform`) as PLY, binary little-endian when
+ * `binary` is true; normals are rotated with it. Atomic: no half-written file on error.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `path` must be a
+ * NUL-terminated string.
+ */
+SherdStatus sherd_export_oriented_ply(const SherdMesh *mesh,
+                                      const SherdAxis *axis,
+                                      const char *path,
+                                      bool binary);
+
+/**
+ * Writes the most informative angle for the profile (the tallest cut, away from the
+ * fracture faces), radians about the axis from the fragment's centroid, to `*out_angle_rad`.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `out_angle_rad` writable.
+ */
+SherdStatus sherd_profile_most_informative_angle(const SherdMesh *mesh,
+                                                 const SherdAxis *axis,
+                                                 double *out_angle_rad);
+
+/**
+ * Writes the profile section at `angle_rad` about the axis (NaN: the most informative
+ * angle) as CSV `curve,index,r_mm,z_mm,closed`, one line per point in the oriented
+ * frame. Atomic. `SHERD_STATUS_DEGENERATE_GEOMETRY` when the cut misses the mesh.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `path` must be a
+ * NUL-terminated string.
+ */
+SherdStatus sherd_export_profile_csv(const SherdMesh *mesh,
+                                     const SherdAxis *axis,
+                                     double angle_rad,
+                                     const char *path);
+
+/**
+ * Like `sherd_export_profile_csv`, into a new NUL-terminated buffer `*out_csv`.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `out_csv` writable.
+ */
+SherdStatus sherd_profile_csv(const SherdMesh *mesh,
+                              const SherdAxis *axis,
+                              double angle_rad,
+                              SherdBuffer **out_csv);
+
+/**
+ * Writes the 3D reconstruction of the preserved part of the vessel as PLY: the closed
+ * outlines of the profile section at `angle_rad` (NaN: the most informative angle)
+ * revolved a full turn about the axis with `segments` steps (0: 180, 2 degrees each; at
+ * least 3 otherwise), in the oriented frame, watertight. Atomic.
+ * `SHERD_STATUS_DEGENERATE_GEOMETRY` when the section has no closed outline.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `path` must be a
+ * NUL-terminated string.
+ */
+SherdStatus sherd_export_reconstruction_ply(const SherdMesh *mesh,
+                                            const SherdAxis *axis,
+                                            double angle_rad,
+                                            size_t segments,
+                                            const char *path,
+                                            bool binary);
+
+/**
+ * Measures `mesh` oriented by `axis` (the refined axis). `options` may be NULL for the
+ * defaults (which include a bootstrap for the intervals: a few refinements more).
+ * `out_measurements` (its `size` set) receives the figures; `out_json` (or NULL) all of
+ * them as JSON, with the wall thickness along the profile and notes on what could not
+ * be measured and why.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `options` NULL or
+ * live; `out_measurements` writable with its `size` set; `out_json` NULL or writable.
+ */
+SherdStatus sherd_measure(const SherdMesh *mesh,
+                          const SherdAxis *axis,
+                          const SherdMeasureOptions *options,
+                          SherdMeasurements *out_measurements,
+                          SherdBuffer **out_json);
 
 /**
  * Creates a mesh from host arrays of double-precision positions.
@@ -361,6 +796,54 @@ SherdStatus sherd_mesh_copy_corner_uvs(const SherdMesh *mesh, float *out, size_t
 SherdStatus sherd_mesh_copy_quality(const SherdMesh *mesh, float *out, size_t vertex_capacity);
 
 /**
+ * Reads a scan: PLY (ASCII or binary), OBJ (with its MTL and texture), STL, XYZ or PTS,
+ * chosen by the file's extension. `path` is a NUL-terminated path (UTF-8, or the OS's
+ * bytes on Unix).
+ *
+ * Errors: `SHERD_STATUS_IO` (cannot open or read), `SHERD_STATUS_PARSE` (malformed; the
+ * message names the file and the line or element), `SHERD_STATUS_INVALID_ARGUMENT`
+ * (unknown extension, invalid content such as an index past the vertex count).
+ *
+ * # Safety
+ * `path` must be a NUL-terminated string; `out_mesh` must be writable.
+ */
+SherdStatus sherd_mesh_read(const char *path, SherdMesh **out_mesh);
+
+/**
+ * Writes the mesh as PLY (binary little-endian when `binary` is true, ASCII otherwise)
+ * with its normals, colours and quality. The file is replaced atomically: on error no
+ * half-written file is left.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `path` a NUL-terminated string.
+ */
+SherdStatus sherd_mesh_write_ply(const SherdMesh *mesh, const char *path, bool binary);
+
+/**
+ * Repairs the mesh in place: merges duplicate (or close) vertices, removes degenerate
+ * and duplicate faces and unreferenced vertices, optionally keeps only the largest
+ * component. `options` may be NULL for the defaults. When `out_report_json` is not
+ * NULL it receives what was changed, as a JSON object in a new `SherdBuffer`.
+ *
+ * # Safety
+ * `mesh` must be a live handle not used by another thread; `options` NULL or live;
+ * `out_report_json` NULL or writable.
+ */
+SherdStatus sherd_mesh_repair(SherdMesh *mesh,
+                              const SherdRepairOptions *options,
+                              SherdBuffer **out_report_json);
+
+/**
+ * Creates a decimated copy of `mesh` with about `target_faces` triangles (quadric edge
+ * collapse keeping boundaries, topology and interpolated colours); `mesh` is unchanged.
+ * A mesh already at or below the target is copied as it is.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `out_mesh` must be writable.
+ */
+SherdStatus sherd_mesh_decimate(const SherdMesh *mesh, size_t target_faces, SherdMesh **out_mesh);
+
+/**
  * Writes the rigid transform from the scan's frame to the oriented frame as a
  * row-major 4x4 matrix (`out_matrix[4 * row + column]`, 16 doubles) acting on column
  * vectors `(x, y, z, 1)`: the axis becomes the z axis, base down and rim up, and
@@ -380,7 +863,7 @@ SherdStatus sherd_axis_oriented_transform(const SherdAxis *axis,
 
 /**
  * Like `sherd_axis_oriented_transform` with the centroid of `mesh`'s vertices as the
- * reference point: the transform that places the fragment in the drawing's frame.
+ * reference point: the frame every profile, measurement, drawing and export uses.
  *
  * # Safety
  * `mesh` must be a live handle; otherwise as for `sherd_axis_oriented_transform`.
@@ -390,11 +873,359 @@ SherdStatus sherd_mesh_oriented_transform(const SherdMesh *mesh,
                                           double *out_matrix);
 
 /**
+ * Finds the rotation axis from the surface normals (Wilczek et al. 2018, section 2.2).
+ *
+ * `options` may be NULL for the defaults. `out_axis` (its `size` set) receives the
+ * axis, base to rim, in the mesh's frame. `out_report` (its `size` set) and
+ * `out_report_json` (the full report as JSON) may be NULL.
+ *
+ * Returns `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` when the fragment does not determine
+ * its axis (a flat base piece, a near-spherical piece, one too small): the axis is
+ * still written, as a best guess not to be trusted, and the message gives the reason;
+ * ask the user for three points (`sherd_orient_from_three_points`).
+ *
+ * # Safety
+ * `mesh` must be a live handle; `options` NULL or live; the out-pointers writable or,
+ * where allowed, NULL.
+ */
+SherdStatus sherd_orient_automatic(const SherdMesh *mesh,
+                                   const SherdOrientOptions *options,
+                                   SherdAxis *out_axis,
+                                   SherdOrientReport *out_report,
+                                   SherdBuffer **out_report_json);
+
+/**
+ * Finds the rotation axis from three points the user picked on one horizontal feature
+ * (the rim's edge, a groove, the base's edge): `points` holds 9 doubles, `x y z` of each,
+ * in the mesh's frame. The points must lie on the sherd (within the options' pick
+ * distance) and not on one line.
+ *
+ * Outputs as for `sherd_orient_automatic`.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `points` must hold 9 doubles; `options` NULL or live;
+ * the out-pointers writable or, where allowed, NULL.
+ */
+SherdStatus sherd_orient_from_three_points(const SherdMesh *mesh,
+                                           const double *points,
+                                           const SherdManualOptions *options,
+                                           SherdAxis *out_axis,
+                                           SherdOrientReport *out_report,
+                                           SherdBuffer **out_report_json);
+
+/**
+ * Creates repair options with the library's defaults.
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_repair_options_new(SherdRepairOptions **out_options);
+
+/**
+ * Releases repair options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_repair_options_free(SherdRepairOptions *options);
+
+/**
+ * Merges vertices closer than `tolerance_mm` (finite, positive); 0 merges only exact
+ * duplicates.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_repair_options_set_merge_tolerance_mm(SherdRepairOptions *options,
+                                                        double tolerance_mm);
+
+/**
+ * Keeps only the largest connected component (scanner debris removed) when `keep` is true.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_repair_options_set_keep_largest_component(SherdRepairOptions *options, bool keep);
+
+/**
+ * Creates automatic-orientation options with the library's defaults (the paper's).
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_orient_options_new(SherdOrientOptions **out_options);
+
+/**
+ * Releases orientation options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_orient_options_free(SherdOrientOptions *options);
+
+/**
+ * Vertex count of the decimated working copy the axis is estimated on (default 10000,
+ * as in the paper); at least 1.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_orient_options_set_target_vertex_count(SherdOrientOptions *options, size_t count);
+
+/**
+ * Laplacian smoothing iterations of the working copy (default 5; 0 disables).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_orient_options_set_smoothing_iterations(SherdOrientOptions *options,
+                                                          size_t iterations);
+
+/**
+ * Confidence of the opposite-normal test that separates the inner and outer surfaces
+ * (default 0.95, in (0, 1)); 0 skips the test.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_orient_options_set_opposite_normal_confidence(SherdOrientOptions *options,
+                                                                double confidence);
+
+/**
+ * Creates manual-orientation options with the library's defaults.
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_manual_options_new(SherdManualOptions **out_options);
+
+/**
+ * Releases manual-orientation options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_manual_options_free(SherdManualOptions *options);
+
+/**
+ * Fraction of the vertices kept as the surface the axis is fitted to, those whose
+ * normal lines pass closest to the picked axis first (default 0.5, the paper's; in (0, 1]).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_manual_options_set_keep_fraction(SherdManualOptions *options,
+                                                   double keep_fraction);
+
+/**
+ * A picked point farther than `distance_mm` from every vertex is an error (default:
+ * 2% of the bounding-box diagonal, restored by passing 0).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_manual_options_set_max_pick_distance_mm(SherdManualOptions *options,
+                                                          double distance_mm);
+
+/**
+ * Creates refinement options with the library's defaults (criterion AUTO, both surfaces).
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_refine_options_new(SherdRefineOptions **out_options);
+
+/**
+ * Releases refinement options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_refine_options_free(SherdRefineOptions *options);
+
+/**
+ * The criterion: a `SHERD_CRITERION_*` value; others give `SHERD_STATUS_INVALID_ARGUMENT`.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_criterion(SherdRefineOptions *options, uint32_t criterion);
+
+/**
+ * The surface: a `SHERD_SURFACE_*` value; others give `SHERD_STATUS_INVALID_ARGUMENT`.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_surface(SherdRefineOptions *options, uint32_t surface);
+
+/**
+ * Number of horizontal sections; 0 lets the library choose from the sherd's height.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_section_count(SherdRefineOptions *options,
+                                                   size_t section_count);
+
+/**
+ * Largest tilt from the start axis the search considers, degrees (finite, positive,
+ * below 90).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_search_bound_deg(SherdRefineOptions *options,
+                                                      double bound_deg);
+
+/**
+ * Creates measurement options with the library's defaults (intervals from a bootstrap
+ * of the default refinement).
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_measure_options_new(SherdMeasureOptions **out_options);
+
+/**
+ * Releases measurement options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_measure_options_free(SherdMeasureOptions *options);
+
+/**
+ * The refinement the intervals' bootstrap repeats: a copy of `refine_options` (pass the
+ * options the axis was refined with).
+ *
+ * # Safety
+ * `options` and `refine_options` must be live handles.
+ */
+SherdStatus sherd_measure_options_set_refine_options(SherdMeasureOptions *options,
+                                                     const SherdRefineOptions *refine_options);
+
+/**
+ * Number of bootstrap resamples behind the intervals; 0 gives no intervals (NaN).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_measure_options_set_bootstrap_samples(SherdMeasureOptions *options,
+                                                        size_t samples);
+
+/**
+ * Seed of the bootstrap's resampling (the same seed gives the same intervals).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_measure_options_set_bootstrap_seed(SherdMeasureOptions *options, uint64_t seed);
+
+/**
+ * Confidence level of the intervals, in (0, 1) (default 0.95).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_measure_options_set_confidence(SherdMeasureOptions *options, double confidence);
+
+/**
+ * Refines `axis` (from `sherd_orient_*`) on `mesh` with the criterion and surface of
+ * `options` (NULL: the defaults, criterion AUTO on both surfaces). The result handle
+ * `*out_refinement` gives the refined axis, the report and the Pareto front.
+ *
+ * Errors: `SHERD_STATUS_DEGENERATE_GEOMETRY` (too few sections, no surface of the
+ * requested kind), `SHERD_STATUS_NOT_CONVERGED`, `SHERD_STATUS_INVALID_ARGUMENT`.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `options` NULL or
+ * live; `out_refinement` writable.
+ */
+SherdStatus sherd_refine(const SherdMesh *mesh,
+                         const SherdAxis *axis,
+                         const SherdRefineOptions *options,
+                         SherdRefinement **out_refinement);
+
+/**
+ * Writes the refined axis (base to rim, the mesh's frame) to `*out_axis` (`size` set).
+ *
+ * # Safety
+ * `refinement` must be a live handle; `out_axis` writable with its `size` set.
+ */
+SherdStatus sherd_refinement_axis(const SherdRefinement *refinement, SherdAxis *out_axis);
+
+/**
+ * Writes the summary of the refinement to `*out_report` (`size` set).
+ *
+ * # Safety
+ * `refinement` must be a live handle; `out_report` writable with its `size` set.
+ */
+SherdStatus sherd_refinement_report(const SherdRefinement *refinement,
+                                    SherdRefineReport *out_report);
+
+/**
+ * Writes the full report (method, reason for the choice, parameters, timings...) as a
+ * JSON object into a new buffer `*out_report_json`.
+ *
+ * # Safety
+ * `refinement` must be a live handle; `out_report_json` writable.
+ */
+SherdStatus sherd_refinement_report_json(const SherdRefinement *refinement,
+                                         SherdBuffer **out_report_json);
+
+/**
+ * Copies the Pareto front into `out_points` (room for `capacity` points) and writes the
+ * number of points to `*out_count`. Pass `out_points` NULL and `capacity` 0 to learn the
+ * count first. The front is empty unless the criterion was Pareto.
+ * `SHERD_STATUS_BUFFER_TOO_SMALL` (with `*out_count` written) when `capacity` is short.
+ *
+ * # Safety
+ * `refinement` must be a live handle; `out_points` NULL (with `capacity` 0) or room for
+ * `capacity` points; `out_count` writable.
+ */
+SherdStatus sherd_refinement_pareto_front(const SherdRefinement *refinement,
+                                          SherdParetoPoint *out_points,
+                                          size_t capacity,
+                                          size_t *out_count);
+
+/**
+ * Releases a refinement; NULL is ignored. Freeing twice is undefined behaviour.
+ *
+ * # Safety
+ * `refinement` must be NULL or a live handle not freed before.
+ */
+void sherd_refinement_free(SherdRefinement *refinement);
+
+/**
  * The name of a status constant as a static NUL-terminated string, e.g.
  * `"SHERD_STATUS_PARSE"`; `"SHERD_STATUS_UNKNOWN"` for a value that is not a status.
  * Never NULL; the string must not be freed.
  */
 const char *sherd_status_name(uint32_t status);
+
+/**
+ * Makes a synthetic sherd: a vessel profile revolved with wall thickness, deformed,
+ * made noisy, broken and moved by a random rigid motion; the same `seed` gives the same
+ * sherd. `kind` is a `SHERD_SYNTH_KIND_*` value; `target_faces` the approximate triangle
+ * count (0: 20000); `noise_mm` the standard deviation of the coordinate noise (finite,
+ * at least 0; the default is 0.02).
+ *
+ * `*out_mesh` receives the mesh (with vertex normals); `out_true_axis` (its `size` set,
+ * or NULL) the true axis, base to rim; `out_truth_json` (or NULL) the whole ground
+ * truth (radii, sector angle, height, profile...) as JSON.
+ *
+ * # Safety
+ * `out_mesh` must be writable; `out_true_axis` NULL or writable with its `size` set;
+ * `out_truth_json` NULL or writable.
+ */
+SherdStatus sherd_synthetic_sherd(uint64_t seed,
+                                  uint32_t kind,
+                                  size_t target_faces,
+                                  double noise_mm,
+                                  SherdMesh **out_mesh,
+                                  SherdAxis *out_true_axis,
+                                  SherdBuffer **out_truth_json);
 
 /**
  * The library's version (`"major.minor.patch"`), a static NUL-terminated string that

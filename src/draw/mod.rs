@@ -1,2 +1,235 @@
 //! The archaeological illustration (Wilczek et al. 2018, section 2.4): a small drawing
 //! model built from an oriented sherd, its styles, and the SVG, EPS, PDF and PNG writers.
+//!
+//! ```no_run
+//! # fn main() -> sherd::Result<()> {
+//! use sherd::draw::{DrawOptions, Drawing, Style};
+//! # let mesh = sherd::mesh::Mesh::default();
+//! # let axis = sherd::orient::Axis::z();
+//! let options = DrawOptions { style: Style::parse("light,occlusion")?, ..Default::default() };
+//! Drawing::build(&mesh, &axis, &options)?.write(std::path::Path::new("sherd.pdf"))?;
+//! # Ok(()) }
+//! ```
+
+pub mod font;
+mod layout;
+pub mod model;
+pub mod png;
+pub mod postscript;
+pub mod stipple;
+pub mod svg;
+mod view;
+
+use std::path::Path;
+
+pub use model::{Anchor, Dots, Drawing, Element, Group, Image, Segment, Stroke, Text};
+
+use crate::mesh::occlusion::OcclusionOptions;
+use crate::mesh::Mesh;
+use crate::orient::Axis;
+use crate::{Error, Result};
+
+/// Output formats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// SVG with one layer per part of the drawing.
+    Svg,
+    /// Encapsulated PostScript, level 3.
+    Eps,
+    /// PDF 1.4.
+    Pdf,
+    /// PNG at the drawing's resolution.
+    Png,
+}
+
+impl Format {
+    /// The format a file name's extension asks for.
+    pub fn from_path(path: &Path) -> Result<Format> {
+        let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+        match extension.as_deref() {
+            Some("svg") => Ok(Format::Svg),
+            Some("eps") | Some("ps") => Ok(Format::Eps),
+            Some("pdf") => Ok(Format::Pdf),
+            Some("png") => Ok(Format::Png),
+            _ => Err(Error::InvalidArgument(format!(
+                "{}: unknown drawing format; use .svg, .eps, .pdf or .png",
+                path.display()
+            ))),
+        }
+    }
+}
+
+/// Rendering styles; any combination (section 2.4.3 and 2.4.4).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct Style {
+    /// Outlines and crease lines (rim, fracture edges) only.
+    pub linear: bool,
+    /// Vertex colours or the texture, projected orthographically.
+    pub colour: bool,
+    /// Directional light (from the upper left, the archaeological convention).
+    pub light: bool,
+    /// Ambient occlusion.
+    pub occlusion: bool,
+    /// Dots, denser in darker areas.
+    pub stipple: bool,
+    /// Vessel regularity as a colour map with its legend.
+    pub regularity: bool,
+}
+
+impl Style {
+    /// The style names, as `sherd draw --style` takes them.
+    pub const NAMES: [&'static str; 6] = ["linear", "colour", "light", "occlusion", "stipple", "regularity"];
+
+    /// Parses a comma-separated list of names ("color" is accepted for "colour").
+    pub fn parse(list: &str) -> Result<Style> {
+        let mut style = Style::default();
+        for name in list.split(',').map(str::trim).filter(|n| !n.is_empty()) {
+            match name.to_ascii_lowercase().as_str() {
+                "linear" => style.linear = true,
+                "colour" | "color" => style.colour = true,
+                "light" => style.light = true,
+                "occlusion" => style.occlusion = true,
+                "stipple" => style.stipple = true,
+                "regularity" => style.regularity = true,
+                other => {
+                    return Err(Error::InvalidArgument(format!(
+                        "unknown style {other:?}; the styles are {}",
+                        Style::NAMES.join(", ")
+                    )))
+                }
+            }
+        }
+        if style == Style::default() {
+            return Err(Error::InvalidArgument(format!("no style given; choose among {}", Style::NAMES.join(", "))));
+        }
+        Ok(style)
+    }
+}
+
+/// How the section is filled.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum SectionFill {
+    /// Solid black (the usual convention for pottery).
+    Black,
+    /// 45-degree hatching.
+    Hatched,
+}
+
+/// Where the views stand relative to the axis (section 2.4.1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum Placement {
+    /// Front view beside the axis, regardless of the true position (Fig. 4:a).
+    Beside,
+    /// Turned about the axis so that the fragment is at its true distance (Fig. 4:b).
+    TrueDistance,
+}
+
+/// Which regularity map the regularity style shows (section 2.4.4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum RegularityKind {
+    /// Distance of each point to the axis (Fig. 7:a).
+    AxisDistance,
+    /// Distance to the ideal vessel revolved from the section (Fig. 7:b).
+    IdealVessel,
+}
+
+/// Settings of [`Drawing::build`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct DrawOptions {
+    /// Rendering styles.
+    pub style: Style,
+    /// Publication scale 1:n (1 = natural size).
+    pub scale_denominator: u32,
+    /// Resolution of raster content and of PNG output, dots per inch.
+    pub dpi: f64,
+    /// Angle of the section about the axis (0 = through the centroid); `None` picks the
+    /// most informative profile.
+    pub section_angle_rad: Option<f64>,
+    /// Section fill.
+    pub section_fill: SectionFill,
+    /// View placement.
+    pub placement: Placement,
+    /// Draw the interior view left of the axis.
+    pub interior_view: bool,
+    /// Prolong the outer profile, dashed, to the full diameter.
+    pub prolongation: bool,
+    /// The map the regularity style shows.
+    pub regularity: RegularityKind,
+    /// Ambient occlusion quality.
+    pub occlusion: OcclusionOptions,
+    /// Direction towards the light in the view frame: x right, -y towards the viewer, z up.
+    pub light_direction: [f64; 3],
+    /// Stipple: dot spacing in fully black areas, paper mm.
+    pub stipple_spacing_mm: f64,
+    /// Stipple: dot radius, paper mm.
+    pub stipple_dot_radius_mm: f64,
+    /// An optional title (inventory number...).
+    pub title: Option<String>,
+}
+
+impl Default for DrawOptions {
+    fn default() -> Self {
+        DrawOptions {
+            style: Style { light: true, occlusion: true, ..Style::default() },
+            scale_denominator: 1,
+            dpi: 300.0,
+            section_angle_rad: None,
+            section_fill: SectionFill::Black,
+            placement: Placement::Beside,
+            interior_view: true,
+            prolongation: true,
+            regularity: RegularityKind::IdealVessel,
+            occlusion: OcclusionOptions { directions: 32, resolution: 512 },
+            light_direction: [-0.5, -0.6, 0.62],
+            stipple_spacing_mm: 0.35,
+            stipple_dot_radius_mm: 0.09,
+            title: None,
+        }
+    }
+}
+
+impl DrawOptions {
+    /// Rejects values no drawing can be made with, naming them.
+    pub fn check(&self) -> Result<()> {
+        if self.scale_denominator == 0 || self.scale_denominator > 100 {
+            return Err(Error::InvalidArgument(format!("scale 1:{} is out of range 1:1 to 1:100", self.scale_denominator)));
+        }
+        if !(self.dpi.is_finite() && (10.0..=4800.0).contains(&self.dpi)) {
+            return Err(Error::InvalidArgument(format!("resolution {} dpi is out of range 10 to 4800", self.dpi)));
+        }
+        if let Some(a) = self.section_angle_rad {
+            crate::profile::section::check_angle(a)?;
+        }
+        let l = self.light_direction;
+        if !(l.iter().all(|c| c.is_finite()) && l.iter().any(|&c| c != 0.0)) {
+            return Err(Error::InvalidArgument(format!("light direction {l:?} must be a non-zero finite vector")));
+        }
+        if !(self.stipple_spacing_mm > 0.0 && self.stipple_dot_radius_mm > 0.0) {
+            return Err(Error::InvalidArgument("stipple spacing and dot radius must be positive".into()));
+        }
+        Ok(())
+    }
+}
+
+impl Drawing {
+    /// The illustration of `mesh` (scan frame) oriented by `axis` (base to rim).
+    pub fn build(mesh: &Mesh, axis: &Axis, options: &DrawOptions) -> Result<Drawing> {
+        layout::build(mesh, axis, options)
+    }
+
+    /// The drawing encoded in `format` (PNG at the drawing's dpi).
+    pub fn to_bytes(&self, format: Format) -> Result<Vec<u8>> {
+        match format {
+            Format::Svg => svg::to_svg(self),
+            Format::Eps => postscript::to_eps(self),
+            Format::Pdf => postscript::to_pdf(self),
+            Format::Png => png::to_png(self, self.dpi),
+        }
+    }
+
+    /// Writes the drawing to `path` atomically, in the format its extension names.
+    pub fn write(&self, path: &Path) -> Result<()> {
+        let bytes = self.to_bytes(Format::from_path(path)?)?;
+        crate::mesh::atomic::write_bytes_atomically(path, &bytes)
+    }
+}

@@ -8,6 +8,7 @@ pub mod io;
 pub mod normals;
 pub mod occlusion;
 pub mod quadric;
+pub mod raster;
 pub mod repair;
 pub mod smooth;
 pub mod spatial;

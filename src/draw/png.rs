@@ -1,0 +1,159 @@
+//! PNG writer: the drawing rasterized with tiny-skia at a chosen resolution, text in the
+//! built-in stroke font, the resolution recorded in the file (pHYs) so that printing at
+//! 100% gives the publication scale.
+
+use tiny_skia::{
+    FillRule, FilterQuality, LineCap, LineJoin, Paint, PathBuilder, Pixmap, PixmapPaint, Transform,
+};
+
+use crate::draw::font;
+use crate::draw::model::{Anchor, Drawing, Element, Group, Path, Rgb, Segment, Stroke};
+use crate::{Error, Result};
+
+/// Pixel size of `drawing` at `dpi`: its paper size times the resolution.
+pub fn pixel_size(drawing: &Drawing, dpi: f64) -> (u32, u32) {
+    let per_mm = dpi / 25.4;
+    ((drawing.width_mm * per_mm).round().max(1.0) as u32, (drawing.height_mm * per_mm).round().max(1.0) as u32)
+}
+
+/// The drawing rendered at `dpi` on a white background, as PNG bytes.
+pub fn to_png(drawing: &Drawing, dpi: f64) -> Result<Vec<u8>> {
+    let pixmap = render(drawing, dpi)?;
+    let rgba = demultiply(pixmap.data());
+    encode_rgba_png(pixmap.width(), pixmap.height(), &rgba, Some(dpi))
+}
+
+/// The drawing rendered at `dpi` (premultiplied RGBA pixmap).
+pub fn render(drawing: &Drawing, dpi: f64) -> Result<Pixmap> {
+    if !(dpi.is_finite() && dpi > 0.0) {
+        return Err(Error::InvalidArgument(format!("resolution must be a positive number of dpi, got {dpi}")));
+    }
+    let (width, height) = pixel_size(drawing, dpi);
+    if width as u64 * height as u64 > 400_000_000 {
+        return Err(Error::InvalidArgument(format!(
+            "a {width} x {height} pixel image is too large; lower the resolution ({dpi} dpi)"
+        )));
+    }
+    let mut pixmap = Pixmap::new(width, height).ok_or_else(|| Error::InvalidArgument("empty image".into()))?;
+    pixmap.fill(tiny_skia::Color::WHITE);
+    let transform = Transform::from_scale((dpi / 25.4) as f32, (dpi / 25.4) as f32);
+    for layer in &drawing.layers {
+        draw_group(&mut pixmap, layer, transform)?;
+    }
+    Ok(pixmap)
+}
+
+fn draw_group(pixmap: &mut Pixmap, group: &Group, transform: Transform) -> Result<()> {
+    for element in &group.children {
+        match element {
+            Element::Path(path) => draw_path(pixmap, path, transform),
+            Element::Dots(dots) => {
+                let mut builder = PathBuilder::new();
+                for c in &dots.centers {
+                    builder.push_circle(c[0] as f32, c[1] as f32, dots.radius_mm as f32);
+                }
+                if let Some(path) = builder.finish() {
+                    pixmap.fill_path(&path, &paint(dots.color), FillRule::Winding, transform, None);
+                }
+            }
+            Element::Text(text) => {
+                let width = font::text_width_mm(&text.content, text.size_mm);
+                let x = match text.anchor {
+                    Anchor::Start => text.position[0],
+                    Anchor::Middle => text.position[0] - width / 2.0,
+                    Anchor::End => text.position[0] - width,
+                };
+                let stroke = Stroke { color: text.color, width_mm: text.size_mm * 0.08, dash_mm: vec![] };
+                for line in font::text_strokes(&text.content, text.size_mm, [x, text.position[1]]) {
+                    draw_path(pixmap, &Path::polyline(&line, false, None, Some(stroke.clone())), transform);
+                }
+            }
+            Element::Image(image) => {
+                let mut premultiplied = image.rgba.clone();
+                for px in premultiplied.chunks_exact_mut(4) {
+                    let a = px[3] as u16;
+                    for c in &mut px[..3] {
+                        *c = ((*c as u16 * a + 127) / 255) as u8;
+                    }
+                }
+                let size = tiny_skia::IntSize::from_wh(image.width_px, image.height_px)
+                    .ok_or_else(|| Error::InvalidArgument("empty raster image".into()))?;
+                let source = Pixmap::from_vec(premultiplied, size)
+                    .ok_or_else(|| Error::InvalidArgument("raster image size does not match its data".into()))?;
+                let placement = transform.pre_translate(image.x_mm as f32, image.y_mm as f32).pre_scale(
+                    (image.width_mm / image.width_px as f64) as f32,
+                    (image.height_mm / image.height_px as f64) as f32,
+                );
+                let paint = PixmapPaint { quality: FilterQuality::Bilinear, ..PixmapPaint::default() };
+                pixmap.draw_pixmap(0, 0, source.as_ref(), &paint, placement, None);
+            }
+            Element::Group(inner) => draw_group(pixmap, inner, transform)?,
+        }
+    }
+    Ok(())
+}
+
+fn draw_path(pixmap: &mut Pixmap, path: &Path, transform: Transform) {
+    let mut builder = PathBuilder::new();
+    for segment in &path.segments {
+        match *segment {
+            Segment::MoveTo(p) => builder.move_to(p[0] as f32, p[1] as f32),
+            Segment::LineTo(p) => builder.line_to(p[0] as f32, p[1] as f32),
+            Segment::Close => builder.close(),
+        }
+    }
+    let Some(skia_path) = builder.finish() else { return };
+    if let Some(color) = path.fill {
+        pixmap.fill_path(&skia_path, &paint(color), FillRule::EvenOdd, transform, None);
+    }
+    if let Some(stroke) = &path.stroke {
+        let mut style = tiny_skia::Stroke {
+            width: stroke.width_mm as f32,
+            line_cap: LineCap::Round,
+            line_join: LineJoin::Round,
+            ..Default::default()
+        };
+        if stroke.dash_mm.len() >= 2 {
+            style.dash = tiny_skia::StrokeDash::new(stroke.dash_mm.iter().map(|&d| d as f32).collect(), 0.0);
+        }
+        pixmap.stroke_path(&skia_path, &paint(stroke.color), &style, transform, None);
+    }
+}
+
+fn paint(color: Rgb) -> Paint<'static> {
+    let mut paint = Paint::default();
+    paint.set_color_rgba8(color[0], color[1], color[2], 255);
+    paint.anti_alias = true;
+    paint
+}
+
+fn demultiply(premultiplied: &[u8]) -> Vec<u8> {
+    let mut out = premultiplied.to_vec();
+    for px in out.chunks_exact_mut(4) {
+        let a = px[3] as u32;
+        if a > 0 && a < 255 {
+            for c in &mut px[..3] {
+                *c = ((*c as u32 * 255 + a / 2) / a).min(255) as u8;
+            }
+        }
+    }
+    out
+}
+
+/// Encodes straight-alpha RGBA as PNG, recording `dpi` (pHYs) when given.
+pub fn encode_rgba_png(width: u32, height: u32, rgba: &[u8], dpi: Option<f64>) -> Result<Vec<u8>> {
+    let mut bytes = Vec::new();
+    {
+        let mut encoder = png::Encoder::new(&mut bytes, width, height);
+        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder.set_compression(png::Compression::Fast);
+        if let Some(dpi) = dpi {
+            let per_metre = (dpi / 0.0254).round() as u32;
+            encoder.set_pixel_dims(Some(png::PixelDimensions { xppu: per_metre, yppu: per_metre, unit: png::Unit::Meter }));
+        }
+        let mut writer = encoder.write_header().map_err(|e| Error::InvalidArgument(format!("PNG encoding: {e}")))?;
+        writer.write_image_data(rgba).map_err(|e| Error::InvalidArgument(format!("PNG encoding: {e}")))?;
+    }
+    Ok(bytes)
+}

@@ -1,0 +1,288 @@
+//! The exterior and interior views (Wilczek et al. 2018, sections 2.4.1 and 2.4.3): the
+//! oriented fragment turned about the axis, projected orthographically onto the xz-plane
+//! with a z-buffer, and shaded per pixel by the chosen styles (vertex colour or texture,
+//! directional light, ambient occlusion, regularity colours). The view's outline and
+//! visible crease lines are traced as vector paths.
+
+use nalgebra::Rotation3;
+use rayon::prelude::*;
+
+use crate::mesh::raster::{barycentric, rasterize_parallel, OrthographicCamera, ZBuffer, NO_FACE};
+use crate::mesh::{Mesh, Point, Vector};
+use crate::profile::regularity::ColorMap;
+
+/// Per-vertex data the shading reads, all in the oriented frame.
+pub(crate) struct Surface<'a> {
+    pub mesh: &'a Mesh,
+    pub oriented: &'a [Point],
+    pub normals: &'a [Vector],
+    /// Ambient light per vertex, stretched to [0, 1] over the fragment.
+    pub occlusion: Option<&'a [f32]>,
+    /// Values and their colour map.
+    pub regularity: Option<(&'a [f32], &'a ColorMap)>,
+}
+
+/// What the view's pixels show.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Shading {
+    pub colour: bool,
+    pub light: bool,
+    pub occlusion: bool,
+    pub regularity: bool,
+    /// Unit direction towards the light in the view frame (x right, -y towards the
+    /// viewer, z up).
+    pub light_direction: [f64; 3],
+}
+
+/// A rendered view: the z-buffer and, per pixel, the colour and the tone stipple reads.
+pub(crate) struct View {
+    pub camera: OrthographicCamera,
+    pub buffer: ZBuffer,
+    pub projected: Vec<[f32; 3]>,
+    /// RGBA, straight alpha; transparent where no face is seen.
+    pub rgba: Vec<u8>,
+    /// Darkness in [0, 1] per pixel (0 where empty).
+    pub darkness: Vec<f32>,
+}
+
+impl View {
+    /// Object-space `[x, z]` of the top-left corner of pixel (0, 0).
+    pub fn top_left(&self) -> [f64; 2] {
+        [self.camera.origin.x, self.camera.origin.z]
+    }
+}
+
+/// Renders the surface turned by `rotation_rad` about z, seen from -y (x right, z up).
+pub(crate) fn render_view(surface: &Surface, rotation_rad: f64, pixel_mm: f64, shading: &Shading) -> View {
+    let rotation = Rotation3::from_axis_angle(&Vector::z_axis(), rotation_rad);
+    let rotated: Vec<Point> = surface.oriented.par_iter().map(|p| rotation * p).collect();
+    let camera = OrthographicCamera::fit(&rotated, Vector::y(), Vector::z(), pixel_mm, 2);
+    let projected = camera.project_all(&rotated);
+    drop(rotated);
+    let buffer = rasterize_parallel(camera.width, camera.height, &projected, &surface.mesh.triangles);
+    let (width, height) = (camera.width, camera.height);
+    let mut rgba = vec![0u8; width * height * 4];
+    let mut darkness = vec![0f32; width * height];
+    let light = Vector::from(shading.light_direction).normalize();
+    let mesh = surface.mesh;
+    rgba.par_chunks_mut(width * 4).zip(darkness.par_chunks_mut(width)).enumerate().for_each(|(y, (row, dark_row))| {
+        for x in 0..width {
+            let face = buffer.face[y * width + x];
+            if face == NO_FACE {
+                continue;
+            }
+            let tri = mesh.triangles[face as usize];
+            let w = barycentric(&projected, tri, x, y);
+            let corners = tri.map(|v| v as usize);
+            let mut normal = rotation * (surface.normals[corners[0]] * w[0] as f64 + surface.normals[corners[1]] * w[1] as f64 + surface.normals[corners[2]] * w[2] as f64);
+            if normal.y > 0.0 {
+                normal = -normal; // seen from behind (noisy normals, interior): light the side we see
+            }
+            let normal = normal.try_normalize(1e-12).unwrap_or(-Vector::y());
+            let mut tone = 1.0f64;
+            if shading.light {
+                // Wrapped Lambert: surfaces turned slightly away from the light keep some
+                // modelling instead of going flat black.
+                tone *= 0.25 + 0.75 * ((normal.dot(&light) + 0.3) / 1.3).max(0.0);
+            }
+            if let (true, Some(ao)) = (shading.occlusion, surface.occlusion) {
+                let a = ao[corners[0]] * w[0] + ao[corners[1]] * w[1] + ao[corners[2]] * w[2];
+                tone *= 0.35 + 0.65 * a as f64;
+            }
+            let mut base = [1.0f64; 3];
+            if let (true, Some((values, map))) = (shading.regularity, surface.regularity) {
+                let v = values[corners[0]] * w[0] + values[corners[1]] * w[1] + values[corners[2]] * w[2];
+                base = map.color(v as f64).map(|c| c as f64 / 255.0);
+            } else if shading.colour {
+                base = surface_colour(mesh, face as usize, corners, w);
+            }
+            let luminance = 0.2126 * base[0] + 0.7152 * base[1] + 0.0722 * base[2];
+            dark_row[x] = (1.0 - tone * luminance).clamp(0.0, 1.0) as f32;
+            let px = &mut row[x * 4..x * 4 + 4];
+            for k in 0..3 {
+                px[k] = (base[k] * tone * 255.0).round().clamp(0.0, 255.0) as u8;
+            }
+            px[3] = 255;
+        }
+    });
+    View { camera, buffer, projected, rgba, darkness }
+}
+
+/// The colour of the surface at barycentric `w` of `face`: the texture when there is one,
+/// the vertex colours otherwise, light grey when neither.
+fn surface_colour(mesh: &Mesh, face: usize, corners: [usize; 3], w: [f32; 3]) -> [f64; 3] {
+    if let (Some(uvs), Some(texture)) = (&mesh.corner_uvs, &mesh.texture) {
+        let uv = [0, 1].map(|k| uvs[3 * face][k] * w[0] + uvs[3 * face + 1][k] * w[1] + uvs[3 * face + 2][k] * w[2]);
+        let column = ((uv[0].rem_euclid(1.0)) * texture.width as f32) as usize;
+        let row = (((1.0 - uv[1]).rem_euclid(1.0)) * texture.height as f32) as usize;
+        let i = (row.min(texture.height as usize - 1) * texture.width as usize + column.min(texture.width as usize - 1)) * 4;
+        if let Some(px) = texture.rgba.get(i..i + 3) {
+            return [px[0], px[1], px[2]].map(|c| c as f64 / 255.0);
+        }
+    }
+    if let Some(colors) = &mesh.colors {
+        let mut c = [0.0; 3];
+        for (k, &v) in corners.iter().enumerate() {
+            for j in 0..3 {
+                c[j] += colors[v][j] as f64 * w[k] as f64 / 255.0;
+            }
+        }
+        return c;
+    }
+    [0.85; 3]
+}
+
+/// The outline of the covered pixels as closed polylines in pixel coordinates (pixel
+/// corners), traced along pixel borders and simplified to within `tolerance_px`.
+pub(crate) fn outline_loops(buffer: &ZBuffer, tolerance_px: f64) -> Vec<Vec<[f64; 2]>> {
+    let (w, h) = (buffer.width as i64, buffer.height as i64);
+    let covered = |x: i64, y: i64| x >= 0 && y >= 0 && x < w && y < h && buffer.face[(y * w + x) as usize] != NO_FACE;
+    // Directed border edges with the covered pixel on the left, keyed by start corner.
+    let mut next: std::collections::HashMap<(i64, i64), Vec<(i64, i64)>> = std::collections::HashMap::new();
+    for y in 0..h {
+        for x in 0..w {
+            if !covered(x, y) {
+                continue;
+            }
+            // Corners: (x, y) top-left ... walk so the pixel is on the left (y down).
+            if !covered(x, y - 1) {
+                next.entry((x + 1, y)).or_default().push((x, y));
+            }
+            if !covered(x, y + 1) {
+                next.entry((x, y + 1)).or_default().push((x + 1, y + 1));
+            }
+            if !covered(x - 1, y) {
+                next.entry((x, y)).or_default().push((x, y + 1));
+            }
+            if !covered(x + 1, y) {
+                next.entry((x + 1, y + 1)).or_default().push((x + 1, y));
+            }
+        }
+    }
+    let mut loops = Vec::new();
+    let starts: Vec<(i64, i64)> = next.keys().copied().collect();
+    for start in starts {
+        while let Some(first) = next.get_mut(&start).and_then(|v| v.pop()) {
+            let mut points = vec![[start.0 as f64, start.1 as f64]];
+            let mut current = first;
+            while current != start {
+                points.push([current.0 as f64, current.1 as f64]);
+                match next.get_mut(&current).and_then(|v| v.pop()) {
+                    Some(n) => current = n,
+                    None => break,
+                }
+            }
+            if points.len() >= 8 {
+                loops.push(simplify_closed(&points, tolerance_px));
+            }
+        }
+    }
+    loops
+}
+
+/// Douglas-Peucker on a closed polyline.
+fn simplify_closed(points: &[[f64; 2]], tolerance: f64) -> Vec<[f64; 2]> {
+    // Split at the point farthest from the first, simplify both halves.
+    let far = (0..points.len())
+        .max_by(|&a, &b| distance2(points[0], points[a]).total_cmp(&distance2(points[0], points[b])))
+        .unwrap_or(0);
+    let mut first: Vec<[f64; 2]> = points[..=far].to_vec();
+    let mut second: Vec<[f64; 2]> = points[far..].to_vec();
+    second.push(points[0]);
+    first = douglas_peucker(&first, tolerance);
+    second = douglas_peucker(&second, tolerance);
+    first.pop();
+    first.extend(second);
+    first.pop();
+    first
+}
+
+fn douglas_peucker(points: &[[f64; 2]], tolerance: f64) -> Vec<[f64; 2]> {
+    if points.len() < 3 {
+        return points.to_vec();
+    }
+    let mut keep = vec![false; points.len()];
+    keep[0] = true;
+    keep[points.len() - 1] = true;
+    let mut stack = vec![(0, points.len() - 1)];
+    while let Some((a, b)) = stack.pop() {
+        let (mut worst, mut index) = (0.0, 0);
+        for i in a + 1..b {
+            let d = segment_distance(points[i], points[a], points[b]);
+            if d > worst {
+                (worst, index) = (d, i);
+            }
+        }
+        if worst > tolerance {
+            keep[index] = true;
+            stack.push((a, index));
+            stack.push((index, b));
+        }
+    }
+    points.iter().zip(keep).filter(|(_, k)| *k).map(|(p, _)| *p).collect()
+}
+
+fn distance2(a: [f64; 2], b: [f64; 2]) -> f64 {
+    (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)
+}
+
+fn segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let length2 = dx * dx + dy * dy;
+    let t = if length2 > 0.0 { (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / length2).clamp(0.0, 1.0) } else { 0.0 };
+    distance2(p, [a[0] + t * dx, a[1] + t * dy]).sqrt()
+}
+
+/// Visible crease edges (dihedral angle above `angle_deg`: rim, fracture edges, sharp
+/// decoration) as pixel-coordinate segments.
+pub(crate) fn crease_segments(mesh: &Mesh, view: &View, angle_deg: f64) -> Vec<[[f64; 2]; 2]> {
+    let cos_limit = angle_deg.to_radians().cos();
+    let mut edges: Vec<(u32, u32, u32)> = Vec::with_capacity(mesh.triangles.len() * 3);
+    for (f, t) in mesh.triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            edges.push((a.min(b), a.max(b), f as u32));
+        }
+    }
+    edges.par_sort_unstable();
+    let face_normal = |f: u32| mesh.face_normal_scaled(f as usize).try_normalize(1e-30).unwrap_or_else(Vector::zeros);
+    let buffer = &view.buffer;
+    let pixel = view.camera.pixel_mm as f32;
+    edges
+        .par_windows(2)
+        .filter_map(|pair| {
+            let ((a, b, f), (a2, b2, g)) = (pair[0], pair[1]);
+            if (a, b) != (a2, b2) || face_normal(f).dot(&face_normal(g)) > cos_limit {
+                return None;
+            }
+            let (p, q) = (view.projected[a as usize], view.projected[b as usize]);
+            let mid = [(p[0] + q[0]) / 2.0, (p[1] + q[1]) / 2.0, (p[2] + q[2]) / 2.0];
+            let (x, y) = (mid[0] as i64, mid[1] as i64);
+            if x < 0 || y < 0 || x >= buffer.width as i64 || y >= buffer.height as i64 {
+                return None;
+            }
+            let seen = buffer.depth[y as usize * buffer.width + x as usize];
+            (mid[2] <= seen + 2.0 * pixel).then_some([[p[0] as f64, p[1] as f64], [q[0] as f64, q[1] as f64]])
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn outline_of_a_filled_square_is_its_four_corners() {
+        let mut buffer = ZBuffer::new(10, 10);
+        for y in 2..7 {
+            for x in 3..8 {
+                buffer.face[y * 10 + x] = 0;
+            }
+        }
+        let loops = outline_loops(&buffer, 0.5);
+        assert_eq!(loops.len(), 1);
+        let mut corners = loops[0].clone();
+        corners.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        assert_eq!(corners, vec![[3.0, 2.0], [3.0, 7.0], [8.0, 2.0], [8.0, 7.0]]);
+    }
+}
