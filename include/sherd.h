@@ -128,14 +128,95 @@ typedef uint32_t SherdMeshAttribute;
 #endif // __cplusplus
 
 /**
+ * Which kind of synthetic fragment to make.
+ */
+enum SherdSynthKind
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Rim, body, base or complete profile, drawn at random.
+   */
+  SHERD_SYNTH_KIND_RANDOM = 0,
+  /**
+   * A piece with part of the rim.
+   */
+  SHERD_SYNTH_KIND_RIM = 1,
+  /**
+   * Wall only.
+   */
+  SHERD_SYNTH_KIND_BODY = 2,
+  /**
+   * A piece with the base's edge.
+   */
+  SHERD_SYNTH_KIND_BASE = 3,
+  /**
+   * A complete profile, rim to base.
+   */
+  SHERD_SYNTH_KIND_RIM_TO_BASE = 4,
+  /**
+   * A piece of the flat base (its axis position is not determined: orientation must
+   * refuse it).
+   */
+  SHERD_SYNTH_KIND_FLAT_BASE = 5,
+  /**
+   * A piece of a spherical body zone (every line through the centre is an axis).
+   */
+  SHERD_SYNTH_KIND_NEAR_SPHERICAL = 6,
+  /**
+   * A piece about 15 mm across (too little curvature to measure).
+   */
+  SHERD_SYNTH_KIND_TINY = 7,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdSynthKind SherdSynthKind;
+#else
+typedef uint32_t SherdSynthKind;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * An immutable byte buffer owned by the library. Read it with `sherd_buffer_contents`;
+ * release it with `sherd_buffer_free`.
+ */
+typedef struct SherdBuffer SherdBuffer;
+
+/**
+ * Options of `sherd_orient_from_three_points`.
+ */
+typedef struct SherdManualOptions SherdManualOptions;
+
+/**
  * An owned triangle mesh (or point cloud) in the scan's frame and units.
  *
- * Create it with `sherd_mesh_from_arrays`, `sherd_mesh_from_arrays_f32` or
- * `sherd_mesh_clone`; release it with `sherd_mesh_free`. A mesh may be used from any
+ * Create it with `sherd_mesh_from_arrays`, `sherd_mesh_from_arrays_f32`,
+ * `sherd_mesh_read` or `sherd_mesh_clone`; release it with `sherd_mesh_free`. A mesh may be used from any
  * thread, and different meshes concurrently; one mesh must not be modified (the
  * `_set_` functions) while another thread uses it.
  */
 typedef struct SherdMesh SherdMesh;
+
+/**
+ * Options of `sherd_orient_automatic`.
+ */
+typedef struct SherdOrientOptions SherdOrientOptions;
+
+/**
+ * Which part of the vessel a fragment comes from (the archaeologist's classification).
+ */
+typedef struct SherdPart SherdPart;
+
+/**
+ * Options of `sherd_mesh_repair`.
+ */
+typedef struct SherdRepairOptions SherdRepairOptions;
+
+/**
+ * The vessel families the generator draws from.
+ */
+typedef struct VesselShape VesselShape;
 
 /**
  * A vessel's rotation axis in the scan's frame and units: a point on it and a unit
@@ -160,9 +241,59 @@ typedef struct {
   double direction[3];
 } SherdAxis;
 
+/**
+ * How far to trust an orientation (written by `sherd_orient_automatic` and
+ * `sherd_orient_from_three_points` when the caller passes one). Set `size` to
+ * `sizeof(SherdOrientReport)` first.
+ */
+typedef struct {
+  /**
+   * `sizeof(SherdOrientReport)`, set by the caller.
+   */
+  size_t size;
+  /**
+   * True when the data determine the axis; false with
+   * `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION`.
+   */
+  bool oriented;
+  /**
+   * Calibrated uncertainty of the direction, degrees (NaN for a manual axis).
+   */
+  double angle_uncertainty_deg;
+  /**
+   * Calibrated uncertainty of the axis position near the sherd, millimetres (NaN for a
+   * manual axis).
+   */
+  double position_uncertainty_mm;
+  /**
+   * Vertices of the working copy kept as the surface of revolution.
+   */
+  size_t kept_vertex_count;
+} SherdOrientReport;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
+
+/**
+ * Writes a pointer to the buffer's first byte to `*out_data` and its length in bytes
+ * to `*out_size`. The pointer stays valid until `sherd_buffer_free`. Text buffers (JSON
+ * reports) are followed by a NUL byte not counted in the size.
+ *
+ * # Safety
+ * `buffer` must be a live handle; `out_data` and `out_size` must be writable.
+ */
+SherdStatus sherd_buffer_contents(const SherdBuffer *buffer,
+                                  const uint8_t **out_data,
+                                  size_t *out_size);
+
+/**
+ * Releases a buffer. NULL is accepted and ignored; freeing twice is undefined behaviour.
+ *
+ * # Safety
+ * `buffer` must be NULL or a handle from this library not freed before.
+ */
+void sherd_buffer_free(SherdBuffer *buffer);
 
 /**
  * The message of the most recent call on this thread that did not return
@@ -174,6 +305,56 @@ extern "C" {
  * its own message, so concurrent calls on other threads do not disturb it.
  */
 const char *sherd_last_error_message(void);
+
+/**
+ * Writes the mesh moved into the oriented frame (axis on z, base down, the fragment's
+ * centroid on +x: `sherd_mesh_oriented_transform`) as PLY, binary little-endian when
+ * `binary` is true; normals are rotated with it. Atomic: no half-written file on error.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `path` must be a
+ * NUL-terminated string.
+ */
+SherdStatus sherd_export_oriented_ply(const SherdMesh *mesh,
+                                      const SherdAxis *axis,
+                                      const char *path,
+                                      bool binary);
+
+/**
+ * Writes the most informative angle for the profile (the tallest cut, away from the
+ * fracture faces), radians about the axis from the fragment's centroid, to `*out_angle_rad`.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `out_angle_rad` writable.
+ */
+SherdStatus sherd_profile_most_informative_angle(const SherdMesh *mesh,
+                                                 const SherdAxis *axis,
+                                                 double *out_angle_rad);
+
+/**
+ * Writes the profile section at `angle_rad` about the axis (NaN: the most informative
+ * angle) as CSV `curve,index,r_mm,z_mm,closed`, one line per point in the oriented
+ * frame. Atomic. `SHERD_STATUS_DEGENERATE_GEOMETRY` when the cut misses the mesh.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `path` must be a
+ * NUL-terminated string.
+ */
+SherdStatus sherd_export_profile_csv(const SherdMesh *mesh,
+                                     const SherdAxis *axis,
+                                     double angle_rad,
+                                     const char *path);
+
+/**
+ * Like `sherd_export_profile_csv`, into a new NUL-terminated buffer `*out_csv`.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `out_csv` writable.
+ */
+SherdStatus sherd_profile_csv(const SherdMesh *mesh,
+                              const SherdAxis *axis,
+                              double angle_rad,
+                              SherdBuffer **out_csv);
 
 /**
  * Creates a mesh from host arrays of double-precision positions.
@@ -361,6 +542,54 @@ SherdStatus sherd_mesh_copy_corner_uvs(const SherdMesh *mesh, float *out, size_t
 SherdStatus sherd_mesh_copy_quality(const SherdMesh *mesh, float *out, size_t vertex_capacity);
 
 /**
+ * Reads a scan: PLY (ASCII or binary), OBJ (with its MTL and texture), STL, XYZ or PTS,
+ * chosen by the file's extension. `path` is a NUL-terminated path (UTF-8, or the OS's
+ * bytes on Unix).
+ *
+ * Errors: `SHERD_STATUS_IO` (cannot open or read), `SHERD_STATUS_PARSE` (malformed; the
+ * message names the file and the line or element), `SHERD_STATUS_INVALID_ARGUMENT`
+ * (unknown extension, invalid content such as an index past the vertex count).
+ *
+ * # Safety
+ * `path` must be a NUL-terminated string; `out_mesh` must be writable.
+ */
+SherdStatus sherd_mesh_read(const char *path, SherdMesh **out_mesh);
+
+/**
+ * Writes the mesh as PLY (binary little-endian when `binary` is true, ASCII otherwise)
+ * with its normals, colours and quality. The file is replaced atomically: on error no
+ * half-written file is left.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `path` a NUL-terminated string.
+ */
+SherdStatus sherd_mesh_write_ply(const SherdMesh *mesh, const char *path, bool binary);
+
+/**
+ * Repairs the mesh in place: merges duplicate (or close) vertices, removes degenerate
+ * and duplicate faces and unreferenced vertices, optionally keeps only the largest
+ * component. `options` may be NULL for the defaults. When `out_report_json` is not
+ * NULL it receives what was changed, as a JSON object in a new `SherdBuffer`.
+ *
+ * # Safety
+ * `mesh` must be a live handle not used by another thread; `options` NULL or live;
+ * `out_report_json` NULL or writable.
+ */
+SherdStatus sherd_mesh_repair(SherdMesh *mesh,
+                              const SherdRepairOptions *options,
+                              SherdBuffer **out_report_json);
+
+/**
+ * Creates a decimated copy of `mesh` with about `target_faces` triangles (quadric edge
+ * collapse keeping boundaries, topology and interpolated colours); `mesh` is unchanged.
+ * A mesh already at or below the target is copied as it is.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `out_mesh` must be writable.
+ */
+SherdStatus sherd_mesh_decimate(const SherdMesh *mesh, size_t target_faces, SherdMesh **out_mesh);
+
+/**
  * Writes the rigid transform from the scan's frame to the oriented frame as a
  * row-major 4x4 matrix (`out_matrix[4 * row + column]`, 16 doubles) acting on column
  * vectors `(x, y, z, 1)`: the axis becomes the z axis, base down and rim up, and
@@ -380,7 +609,7 @@ SherdStatus sherd_axis_oriented_transform(const SherdAxis *axis,
 
 /**
  * Like `sherd_axis_oriented_transform` with the centroid of `mesh`'s vertices as the
- * reference point: the transform that places the fragment in the drawing's frame.
+ * reference point: the frame every profile, measurement, drawing and export uses.
  *
  * # Safety
  * `mesh` must be a live handle; otherwise as for `sherd_axis_oriented_transform`.
@@ -390,11 +619,189 @@ SherdStatus sherd_mesh_oriented_transform(const SherdMesh *mesh,
                                           double *out_matrix);
 
 /**
+ * Finds the rotation axis from the surface normals (Wilczek et al. 2018, section 2.2).
+ *
+ * `options` may be NULL for the defaults. `out_axis` (its `size` set) receives the
+ * axis, base to rim, in the mesh's frame. `out_report` (its `size` set) and
+ * `out_report_json` (the full report as JSON) may be NULL.
+ *
+ * Returns `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` when the fragment does not determine
+ * its axis (a flat base piece, a near-spherical piece, one too small): the axis is
+ * still written, as a best guess not to be trusted, and the message gives the reason;
+ * ask the user for three points (`sherd_orient_from_three_points`).
+ *
+ * # Safety
+ * `mesh` must be a live handle; `options` NULL or live; the out-pointers writable or,
+ * where allowed, NULL.
+ */
+SherdStatus sherd_orient_automatic(const SherdMesh *mesh,
+                                   const SherdOrientOptions *options,
+                                   SherdAxis *out_axis,
+                                   SherdOrientReport *out_report,
+                                   SherdBuffer **out_report_json);
+
+/**
+ * Finds the rotation axis from three points the user picked on one horizontal feature
+ * (the rim's edge, a groove, the base's edge): `points` holds 9 doubles, `x y z` of each,
+ * in the mesh's frame. The points must lie on the sherd (within the options' pick
+ * distance) and not on one line.
+ *
+ * Outputs as for `sherd_orient_automatic`.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `points` must hold 9 doubles; `options` NULL or live;
+ * the out-pointers writable or, where allowed, NULL.
+ */
+SherdStatus sherd_orient_from_three_points(const SherdMesh *mesh,
+                                           const double *points,
+                                           const SherdManualOptions *options,
+                                           SherdAxis *out_axis,
+                                           SherdOrientReport *out_report,
+                                           SherdBuffer **out_report_json);
+
+/**
+ * Creates repair options with the library's defaults.
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_repair_options_new(SherdRepairOptions **out_options);
+
+/**
+ * Releases repair options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_repair_options_free(SherdRepairOptions *options);
+
+/**
+ * Merges vertices closer than `tolerance_mm` (finite, positive); 0 merges only exact
+ * duplicates.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_repair_options_set_merge_tolerance_mm(SherdRepairOptions *options,
+                                                        double tolerance_mm);
+
+/**
+ * Keeps only the largest connected component (scanner debris removed) when `keep` is true.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_repair_options_set_keep_largest_component(SherdRepairOptions *options, bool keep);
+
+/**
+ * Creates automatic-orientation options with the library's defaults (the paper's).
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_orient_options_new(SherdOrientOptions **out_options);
+
+/**
+ * Releases orientation options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_orient_options_free(SherdOrientOptions *options);
+
+/**
+ * Vertex count of the decimated working copy the axis is estimated on (default 10000,
+ * as in the paper); at least 1.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_orient_options_set_target_vertex_count(SherdOrientOptions *options, size_t count);
+
+/**
+ * Laplacian smoothing iterations of the working copy (default 5; 0 disables).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_orient_options_set_smoothing_iterations(SherdOrientOptions *options,
+                                                          size_t iterations);
+
+/**
+ * Confidence of the opposite-normal test that separates the inner and outer surfaces
+ * (default 0.95, in (0, 1)); 0 skips the test.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_orient_options_set_opposite_normal_confidence(SherdOrientOptions *options,
+                                                                double confidence);
+
+/**
+ * Creates manual-orientation options with the library's defaults.
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_manual_options_new(SherdManualOptions **out_options);
+
+/**
+ * Releases manual-orientation options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_manual_options_free(SherdManualOptions *options);
+
+/**
+ * Fraction of the vertices kept as the surface the axis is fitted to, those whose
+ * normal lines pass closest to the picked axis first (default 0.5, the paper's; in (0, 1]).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_manual_options_set_keep_fraction(SherdManualOptions *options,
+                                                   double keep_fraction);
+
+/**
+ * A picked point farther than `distance_mm` from every vertex is an error (default:
+ * 2% of the bounding-box diagonal, restored by passing 0).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_manual_options_set_max_pick_distance_mm(SherdManualOptions *options,
+                                                          double distance_mm);
+
+/**
  * The name of a status constant as a static NUL-terminated string, e.g.
  * `"SHERD_STATUS_PARSE"`; `"SHERD_STATUS_UNKNOWN"` for a value that is not a status.
  * Never NULL; the string must not be freed.
  */
 const char *sherd_status_name(uint32_t status);
+
+/**
+ * Makes a synthetic sherd: a vessel profile revolved with wall thickness, deformed,
+ * made noisy, broken and moved by a random rigid motion; the same `seed` gives the same
+ * sherd. `kind` is a `SHERD_SYNTH_KIND_*` value; `target_faces` the approximate triangle
+ * count (0: 20000); `noise_mm` the standard deviation of the coordinate noise (finite,
+ * at least 0; the default is 0.02).
+ *
+ * `*out_mesh` receives the mesh (with vertex normals); `out_true_axis` (its `size` set,
+ * or NULL) the true axis, base to rim; `out_truth_json` (or NULL) the whole ground
+ * truth (radii, sector angle, height, profile...) as JSON.
+ *
+ * # Safety
+ * `out_mesh` must be writable; `out_true_axis` NULL or writable with its `size` set;
+ * `out_truth_json` NULL or writable.
+ */
+SherdStatus sherd_synthetic_sherd(uint64_t seed,
+                                  uint32_t kind,
+                                  size_t target_faces,
+                                  double noise_mm,
+                                  SherdMesh **out_mesh,
+                                  SherdAxis *out_true_axis,
+                                  SherdBuffer **out_truth_json);
 
 /**
  * The library's version (`"major.minor.patch"`), a static NUL-terminated string that

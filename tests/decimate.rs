@@ -2,6 +2,7 @@
 //! flipped faces, attributes interpolated, surface followed. MeshLab comparisons are in
 //! `tests/meshlab_decimation.rs`.
 
+mod support;
 #[path = "support/decimation_vessel.rs"]
 mod vessel;
 
@@ -131,6 +132,31 @@ fn interpolates_colours_and_normals() {
 }
 
 #[test]
+fn keeps_a_closed_synthetic_sherd_closed() {
+    let options = sherd::synth::SherdOptions { target_faces: 40_000, ..Default::default() };
+    let input = sherd::synth::synthetic_sherd(3, &options).mesh;
+    let euler = euler_characteristic(&input);
+    let boundary_before = edge_face_counts(&input).iter().filter(|e| e.1 == 1).count();
+    let (output, report) = decimate_with_options(&input, &DecimateOptions::with_target_vertices(2_000)).unwrap();
+    assert!(report.reached_target, "{report:?}");
+    assert_manifold(&output);
+    assert_eq!(euler_characteristic(&output), euler, "topology changed: {report:?}");
+    assert_eq!(report.boundary_edges_before, boundary_before);
+    // The generator breaks a closed wall into closed fragments (a sphere, topologically).
+    assert_eq!((euler, boundary_before), (2, 0));
+    assert_eq!(report.boundary_edges_after, 0, "a closed sherd was opened");
+}
+
+#[test]
+fn stops_at_a_vertex_target() {
+    let input = vessel::noisy_vessel(20_000, 0.1, 6);
+    let (output, report) = decimate_with_options(&input, &DecimateOptions::with_target_vertices(1_000)).unwrap();
+    assert!(report.reached_target, "{report:?}");
+    assert_eq!(output.vertex_count(), 1_000);
+    assert_manifold(&output);
+}
+
+#[test]
 fn fixed_boundary_does_not_move() {
     let input = vessel::noisy_vessel(10_000, 0.2, 4);
     let options = DecimateOptions { boundary: BoundaryPolicy::Fixed, ..DecimateOptions::with_target_faces(1_500) };
@@ -143,7 +169,7 @@ fn fixed_boundary_does_not_move() {
 
 #[test]
 fn keeps_the_hole_of_a_torus() {
-    let input = vessel::torus(60, 30);
+    let input = support::torus(60, 30, 30.0, 10.0, 0.0);
     assert_eq!(euler_characteristic(&input), 0);
     let (output, report) = decimate_with_options(&input, &DecimateOptions::with_target_faces(12)).unwrap();
     assert_manifold(&output);
@@ -161,6 +187,7 @@ fn leaves_a_small_enough_mesh_alone_and_rejects_bad_input() {
     let cloud = Mesh::from_points_and_normals(vec![Point::origin()], vec![Vector::z()]);
     assert!(matches!(decimate(&cloud, 10), Err(Error::InvalidArgument(m)) if m.contains("point cloud")));
     assert!(matches!(decimate(&input, 0), Err(Error::InvalidArgument(m)) if m.contains("at least one face")));
+    assert!(decimate_with_options(&input, &DecimateOptions { target_vertices: Some(0), ..Default::default() }).is_err());
     let mut broken = input.clone();
     broken.triangles[7][1] = 99_999;
     assert!(matches!(decimate(&broken, 10), Err(Error::InvalidArgument(m)) if m.contains("face 7")));

@@ -6,7 +6,7 @@ mod support;
 
 use sherd::mesh::normals::{NormalWeighting, compute_vertex_normals, ensure_vertex_normals, orient_faces_outward};
 use sherd::mesh::repair::{RepairOptions, repair};
-use sherd::mesh::smooth::{BoundaryHandling, LaplacianWeights, SmoothOptions, hc_smooth, laplacian_smooth};
+use sherd::mesh::smooth::{BoundaryHandling, LaplacianWeights, SmoothOptions, hc_smooth, hc_smooth_vollmer, laplacian_smooth};
 use sherd::mesh::spatial::{Bvh, KdTree};
 use sherd::mesh::topology::Topology;
 use sherd::mesh::{Mesh, Point, Vector};
@@ -320,4 +320,83 @@ fn smoothing_removes_noise_and_respects_boundary_handling() {
     laplacian_smooth(&mut free, &SmoothOptions { iterations: 4, weights: LaplacianWeights::Uniform, boundary: BoundaryHandling::Free });
     let corner_moved_inward = free.positions[0].x > 0.0 && free.positions[0].y > 0.0;
     assert!(corner_moved_inward, "a free corner shrinks into the sheet: {:?}", free.positions[0]);
+}
+
+#[test]
+fn paper_hc_keeps_the_sphere_s_size_better_than_laplacian_and_meshlab_hc() {
+    let centre = Point::origin();
+    let mut noisy = icosphere(3, 10.0, centre);
+    add_noise(&mut noisy, 0.3, 21);
+    let before = radius_spread(&noisy, centre, 10.0);
+    let mean_radius = |m: &Mesh| m.positions.iter().map(|p| (p - centre).norm()).sum::<f64>() / m.vertex_count() as f64;
+    let mut laplacian = noisy.clone();
+    laplacian_smooth(&mut laplacian, &SmoothOptions { iterations: 10, weights: LaplacianWeights::Uniform, boundary: BoundaryHandling::Free });
+    let mut meshlab_hc = noisy.clone();
+    hc_smooth(&mut meshlab_hc, 10);
+    let mut paper_hc = noisy.clone();
+    hc_smooth_vollmer(&mut paper_hc, 10, 0.0, 0.5);
+    let shrink = |m: &Mesh| 10.0 - mean_radius(m);
+    println!("shrinkage: laplacian {:.4}, MeshLab HC {:.4}, paper HC {:.4}", shrink(&laplacian), shrink(&meshlab_hc), shrink(&paper_hc));
+    assert!(shrink(&paper_hc).abs() < 0.5 * shrink(&laplacian));
+    assert!(shrink(&paper_hc).abs() < shrink(&meshlab_hc));
+    assert!(radius_spread(&paper_hc, centre, mean_radius(&paper_hc)) < 0.5 * before, "and it still removes noise");
+}
+
+/// MeshLab's topological measures of the scan at `path` (after the same cleaning filters
+/// sherd's repair applies), as JSON.
+fn meshlab_topology(path: &std::path::Path) -> serde_json::Value {
+    let code = "import sys, json, pymeshlab\n\
+        m = pymeshlab.MeshSet(); m.load_new_mesh(sys.argv[1])\n\
+        m.meshing_remove_duplicate_vertices(); m.meshing_remove_null_faces()\n\
+        m.meshing_remove_duplicate_faces(); m.meshing_remove_unreferenced_vertices()\n\
+        print(json.dumps(m.get_topological_measures()))";
+    serde_json::from_str(&python_output(code, &[path.as_os_str()])).unwrap()
+}
+
+#[test]
+fn real_scan_repair_topology_normals_and_indices() {
+    let test = "real_scan_repair_topology_normals_and_indices";
+    let Some(path) = shared_data_file(test, "dacord/A011.ply") else { return };
+    let scan = sherd::mesh::io::read_mesh(&path).unwrap();
+    let mut repaired = scan.clone();
+    let report = repair(&mut repaired, &RepairOptions::default());
+    println!("{}", serde_json::to_string(&report).unwrap());
+    repaired.validate().unwrap();
+    assert_eq!(report.component_face_counts.iter().sum::<usize>(), report.faces_after);
+    assert_eq!(report.vertices_after, repaired.vertex_count());
+    if pymeshlab_available(test) {
+        let meshlab = meshlab_topology(&path);
+        assert_eq!(report.vertices_after as u64, meshlab["vertices_number"].as_u64().unwrap());
+        assert_eq!(report.faces_after as u64, meshlab["faces_number"].as_u64().unwrap());
+        assert_eq!(report.component_face_counts.len() as u64, meshlab["connected_components_number"].as_u64().unwrap());
+        assert_eq!(report.boundary_edge_count as u64, meshlab["boundary_edges"].as_u64().unwrap());
+        assert_eq!(report.non_manifold_edge_count as u64, meshlab["non_two_manifold_edges"].as_u64().unwrap());
+        assert_eq!(Topology::new(&repaired).edge_count() as u64, meshlab["edges_number"].as_u64().unwrap());
+    }
+
+    // The scanner's normals and ours from the faces agree where the surface is smooth.
+    let given = scan.normals.clone().expect("A011 has normals");
+    let computed = compute_vertex_normals(&scan, NormalWeighting::Area);
+    let mut angles: Vec<f64> = given.iter().zip(&computed).map(|(a, b)| a.angle(b).to_degrees()).collect();
+    angles.sort_by(f64::total_cmp);
+    let (median, p90) = (angles[angles.len() / 2], angles[angles.len() * 9 / 10]);
+    println!("A011 normals: median {median:.2} deg, 90th percentile {p90:.2} deg from the file's");
+    assert!(median < 2.0 && p90 < 10.0);
+
+    let mut oriented = scan.clone();
+    let orientation = orient_faces_outward(&mut oriented);
+    println!("A011 orientation: {orientation:?}");
+    assert!(orientation.flipped_faces * 100 < scan.face_count(), "a scan written outward stays (almost all) as it is");
+
+    // Every vertex is its own nearest point and lies on the surface.
+    let tree = KdTree::new(&scan.positions);
+    let bvh = Bvh::new(&scan);
+    for v in (0..scan.vertex_count()).step_by(97) {
+        let p = scan.positions[v];
+        assert_eq!(tree.nearest(&p).unwrap().distance, 0.0);
+        assert!(bvh.closest_point(&p).unwrap().distance < 1e-9);
+        // A ray from just outside along the inward normal enters the sherd.
+        let n = given[v];
+        assert!(bvh.closest_hit(&(p + n * 0.01), &-n).is_some_and(|h| h.distance < 0.02));
+    }
 }

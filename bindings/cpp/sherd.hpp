@@ -11,6 +11,7 @@
 #define SHERD_HPP
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -51,6 +52,18 @@ inline void check_abi() {
                     "library ABI " + std::to_string(sherd_abi_version()) + " but header ABI " +
                         std::to_string(SHERD_ABI_VERSION));
     }
+}
+
+/// Takes the bytes of a library buffer and frees it.
+inline std::string take_buffer(SherdBuffer* buffer) {
+    struct Release {
+        SherdBuffer* buffer;
+        ~Release() { sherd_buffer_free(buffer); }
+    } release{buffer};
+    const std::uint8_t* data = nullptr;
+    std::size_t size = 0;
+    check(sherd_buffer_contents(buffer, &data, &size));
+    return std::string(reinterpret_cast<const char*>(data), size);
 }
 
 /// A rotation axis (point, unit direction base to rim) with its `size` field set.
@@ -106,6 +119,13 @@ public:
         require_multiple(positions.size(), 3, "positions");
         require_multiple(triangles.size(), 3, "triangles");
         return from_arrays(positions.data(), positions.size() / 3, triangles.data(), triangles.size() / 3);
+    }
+
+    /// Reads a scan (PLY, OBJ, STL, XYZ, PTS by extension).
+    static Mesh read(const std::string& path) {
+        SherdMesh* handle = nullptr;
+        check(sherd_mesh_read(path.c_str(), &handle));
+        return Mesh(handle);
     }
 
     Mesh(const Mesh& other) : handle_(nullptr) {
@@ -215,6 +235,11 @@ public:
         return matrix;
     }
 
+    /// Writes PLY atomically (binary little-endian or ASCII).
+    void write_ply(const std::string& path, bool binary = true) const {
+        check(sherd_mesh_write_ply(handle_, path.c_str(), binary));
+    }
+
 private:
     static void require_multiple(std::size_t size, std::size_t group, const char* name) {
         if (size % group != 0) {
@@ -225,6 +250,31 @@ private:
 
     SherdMesh* handle_;
 };
+
+/// Writes `mesh` moved into the oriented frame as PLY.
+inline void export_oriented_ply(const Mesh& mesh, const SherdAxis& axis, const std::string& path, bool binary = true) {
+    check(sherd_export_oriented_ply(mesh.get(), &axis, path.c_str(), binary));
+}
+
+/// The most informative profile angle, radians about the axis.
+inline double most_informative_angle(const Mesh& mesh, const SherdAxis& axis) {
+    double angle = 0.0;
+    check(sherd_profile_most_informative_angle(mesh.get(), &axis, &angle));
+    return angle;
+}
+
+/// The profile section as CSV (`curve,index,r_mm,z_mm,closed`); NaN: the most informative angle.
+inline std::string profile_csv(const Mesh& mesh, const SherdAxis& axis, double angle_rad = NAN) {
+    SherdBuffer* buffer = nullptr;
+    check(sherd_profile_csv(mesh.get(), &axis, angle_rad, &buffer));
+    return take_buffer(buffer);
+}
+
+/// Writes the profile section as CSV.
+inline void export_profile_csv(const Mesh& mesh, const SherdAxis& axis, const std::string& path,
+                               double angle_rad = NAN) {
+    check(sherd_export_profile_csv(mesh.get(), &axis, angle_rad, path.c_str()));
+}
 
 }  // namespace sherd
 

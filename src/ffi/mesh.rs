@@ -1,16 +1,21 @@
 //! `SherdMesh`: a mesh built from the host's arrays (Blender's and MeshLab's vertex and
 //! face buffers, no temporary files) or read from a scan file, and copied back out.
 
+use std::ffi::c_char;
+
+use super::buffer::{SherdBuffer, hand_out_report};
 use super::error::{Failure, FfiResult};
+use super::options::{SherdRepairOptions, options_or_default};
 use super::panic::guard;
-use super::pointers::{borrow, borrow_mut, host_slice, host_slice_mut, require, write_out};
+use super::pointers::{borrow, borrow_mut, host_slice, host_slice_mut, path_from, require, write_out};
 use super::status::SherdStatus;
+use crate::mesh::io::PlyEncoding;
 use crate::mesh::{Mesh, Point, Vector};
 
 /// An owned triangle mesh (or point cloud) in the scan's frame and units.
 ///
-/// Create it with `sherd_mesh_from_arrays`, `sherd_mesh_from_arrays_f32` or
-/// `sherd_mesh_clone`; release it with `sherd_mesh_free`. A mesh may be used from any
+/// Create it with `sherd_mesh_from_arrays`, `sherd_mesh_from_arrays_f32`,
+/// `sherd_mesh_read` or `sherd_mesh_clone`; release it with `sherd_mesh_free`. A mesh may be used from any
 /// thread, and different meshes concurrently; one mesh must not be modified (the
 /// `_set_` functions) while another thread uses it.
 pub struct SherdMesh {
@@ -405,5 +410,86 @@ pub unsafe extern "C" fn sherd_mesh_copy_quality(mesh: *const SherdMesh, out: *m
         let quality = mesh.quality.as_ref().ok_or_else(|| absent("quality values"))?;
         let values: Vec<[f32; 1]> = quality.iter().map(|&q| [q]).collect();
         copy_out(&values, out, vertex_capacity, "vertices")
+    })
+}
+
+/// Reads a scan: PLY (ASCII or binary), OBJ (with its MTL and texture), STL, XYZ or PTS,
+/// chosen by the file's extension. `path` is a NUL-terminated path (UTF-8, or the OS's
+/// bytes on Unix).
+///
+/// Errors: `SHERD_STATUS_IO` (cannot open or read), `SHERD_STATUS_PARSE` (malformed; the
+/// message names the file and the line or element), `SHERD_STATUS_INVALID_ARGUMENT`
+/// (unknown extension, invalid content such as an index past the vertex count).
+///
+/// # Safety
+/// `path` must be a NUL-terminated string; `out_mesh` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_mesh_read(path: *const c_char, out_mesh: *mut *mut SherdMesh) -> SherdStatus {
+    guard("sherd_mesh_read", || {
+        let path = unsafe { path_from(path, "path") }?;
+        require(out_mesh.cast_const(), "out_mesh")?;
+        let mesh = crate::mesh::io::read_mesh(&path)?;
+        unsafe { hand_out(out_mesh, mesh) }
+    })
+}
+
+/// Writes the mesh as PLY (binary little-endian when `binary` is true, ASCII otherwise)
+/// with its normals, colours and quality. The file is replaced atomically: on error no
+/// half-written file is left.
+///
+/// # Safety
+/// `mesh` must be a live handle; `path` a NUL-terminated string.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_mesh_write_ply(mesh: *const SherdMesh, path: *const c_char, binary: bool) -> SherdStatus {
+    guard("sherd_mesh_write_ply", || {
+        let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
+        let path = unsafe { path_from(path, "path") }?;
+        Ok(crate::mesh::io::write_ply(&path, mesh, ply_encoding(binary))?)
+    })
+}
+
+/// The PLY encoding for the `binary` flag of the C API.
+pub(crate) fn ply_encoding(binary: bool) -> PlyEncoding {
+    if binary { PlyEncoding::BinaryLittleEndian } else { PlyEncoding::Ascii }
+}
+
+/// Repairs the mesh in place: merges duplicate (or close) vertices, removes degenerate
+/// and duplicate faces and unreferenced vertices, optionally keeps only the largest
+/// component. `options` may be NULL for the defaults. When `out_report_json` is not
+/// NULL it receives what was changed, as a JSON object in a new `SherdBuffer`.
+///
+/// # Safety
+/// `mesh` must be a live handle not used by another thread; `options` NULL or live;
+/// `out_report_json` NULL or writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_mesh_repair(
+    mesh: *mut SherdMesh,
+    options: *const SherdRepairOptions,
+    out_report_json: *mut *mut SherdBuffer,
+) -> SherdStatus {
+    guard("sherd_mesh_repair", || {
+        let mesh = mesh_mut(mesh)?;
+        let options = unsafe { options_or_default(options, |builder| &builder.options) }?;
+        let report = crate::mesh::repair::repair(mesh, &options);
+        unsafe { hand_out_report(out_report_json, &report) }
+    })
+}
+
+/// Creates a decimated copy of `mesh` with about `target_faces` triangles (quadric edge
+/// collapse keeping boundaries, topology and interpolated colours); `mesh` is unchanged.
+/// A mesh already at or below the target is copied as it is.
+///
+/// # Safety
+/// `mesh` must be a live handle; `out_mesh` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_mesh_decimate(mesh: *const SherdMesh, target_faces: usize, out_mesh: *mut *mut SherdMesh) -> SherdStatus {
+    guard("sherd_mesh_decimate", || {
+        let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
+        require(out_mesh.cast_const(), "out_mesh")?;
+        if target_faces == 0 {
+            return Err(Failure::invalid("`target_faces` must be at least 1"));
+        }
+        let decimated = crate::mesh::decimate::decimate(mesh, target_faces)?;
+        unsafe { hand_out(out_mesh, decimated) }
     })
 }

@@ -6,16 +6,24 @@
 //! entry; every pointer is checked for NULL; every body runs inside `catch_unwind`. No
 //! algorithm lives here: each entry point converts, calls the Rust API and converts back.
 
+pub mod buffer;
 pub mod error;
+pub mod export;
 pub mod mesh;
 pub mod orient;
+pub mod options;
 mod panic;
 mod pointers;
 pub mod status;
+pub mod synth;
 pub mod version;
 
+pub use buffer::*;
 pub use error::sherd_last_error_message;
+pub use export::*;
 pub use mesh::*;
+pub use options::*;
 pub use orient::*;
 pub use status::*;
+pub use synth::*;
 pub use version::*;

@@ -1,13 +1,16 @@
-//! The axis as the host sees it (`SherdAxis`) and the oriented frame as a 4x4 matrix
-//! hosts apply to their own objects.
+//! Orientation: automatic and from three points, the axis as the host sees it
+//! (`SherdAxis`), and the oriented frame as a 4x4 matrix hosts apply to their objects.
 
+use super::buffer::{SherdBuffer, hand_out_report};
 use super::error::{Failure, FfiResult};
 use super::mesh::{SherdMesh, mesh_ref};
+use super::options::{SherdManualOptions, SherdOrientOptions, options_or_default};
 use super::panic::guard;
-use super::pointers::{SizedStruct, host_slice, host_slice_mut, read_sized};
+use super::pointers::{SizedStruct, checked_size, host_slice, host_slice_mut, read_sized, write_sized};
 use super::status::SherdStatus;
 use crate::mesh::Point;
-use crate::orient::{Axis, AxisRecord};
+use crate::orient::{Axis, AxisRecord, Orientation, Verdict};
+use crate::profile::section::oriented_frame;
 
 /// A vessel's rotation axis in the scan's frame and units: a point on it and a unit
 /// direction pointing from the base towards the rim.
@@ -92,7 +95,7 @@ pub unsafe extern "C" fn sherd_axis_oriented_transform(
 }
 
 /// Like `sherd_axis_oriented_transform` with the centroid of `mesh`'s vertices as the
-/// reference point: the transform that places the fragment in the drawing's frame.
+/// reference point: the frame every profile, measurement, drawing and export uses.
 ///
 /// # Safety
 /// `mesh` must be a live handle; otherwise as for `sherd_axis_oriented_transform`.
@@ -105,7 +108,134 @@ pub unsafe extern "C" fn sherd_mesh_oriented_transform(
     guard("sherd_mesh_oriented_transform", || {
         let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
         let axis = unsafe { read_axis(axis, "axis") }?;
-        let centroid = mesh.centroid().ok_or_else(|| Failure::invalid("the mesh has no vertices"))?;
-        write_matrix(&axis.to_oriented_frame(&centroid), out_matrix)
+        write_matrix(&oriented_frame(mesh, &axis), out_matrix)
+    })
+}
+
+/// How far to trust an orientation (written by `sherd_orient_automatic` and
+/// `sherd_orient_from_three_points` when the caller passes one). Set `size` to
+/// `sizeof(SherdOrientReport)` first.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SherdOrientReport {
+    /// `sizeof(SherdOrientReport)`, set by the caller.
+    pub size: usize,
+    /// True when the data determine the axis; false with
+    /// `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION`.
+    pub oriented: bool,
+    /// Calibrated uncertainty of the direction, degrees (NaN for a manual axis).
+    pub angle_uncertainty_deg: f64,
+    /// Calibrated uncertainty of the axis position near the sherd, millimetres (NaN for a
+    /// manual axis).
+    pub position_uncertainty_mm: f64,
+    /// Vertices of the working copy kept as the surface of revolution.
+    pub kept_vertex_count: usize,
+}
+
+unsafe impl SizedStruct for SherdOrientReport {
+    const NAME: &'static str = "SherdOrientReport";
+    const MIN_SIZE: usize = size_of::<SherdOrientReport>();
+}
+
+/// Hands an orientation to the host: the axis always (the best estimate, also when it
+/// needs a human), the report when asked for, and `NEEDS_MANUAL_ORIENTATION` with the
+/// reason as the status when the data do not determine the axis.
+unsafe fn hand_out_orientation(
+    orientation: &Orientation,
+    out_axis: *mut SherdAxis,
+    out_report: *mut SherdOrientReport,
+    out_report_json: *mut *mut SherdBuffer,
+) -> FfiResult {
+    unsafe { write_sized(out_axis, SherdAxis::from_axis(&orientation.axis), "out_axis") }?;
+    if !out_report.is_null() {
+        let report = SherdOrientReport {
+            size: size_of::<SherdOrientReport>(),
+            oriented: orientation.verdict.is_oriented(),
+            angle_uncertainty_deg: orientation.angle_uncertainty_deg,
+            position_uncertainty_mm: orientation.position_uncertainty_mm,
+            kept_vertex_count: orientation.kept_vertex_count,
+        };
+        unsafe { write_sized(out_report, report, "out_report") }?;
+    }
+    unsafe { hand_out_report(out_report_json, &orientation.report) }?;
+    match &orientation.verdict {
+        Verdict::Oriented => Ok(()),
+        Verdict::NeedsManualOrientation { reason } => {
+            Err(Failure::new(SherdStatus::NeedsManualOrientation, reason.clone()))
+        }
+    }
+}
+
+/// Checks the output pointers before a long computation, so that a mistake is reported
+/// at once.
+fn check_orientation_outputs(out_axis: *mut SherdAxis, out_report: *mut SherdOrientReport) -> FfiResult {
+    checked_size(out_axis.cast_const(), "out_axis")?;
+    if !out_report.is_null() {
+        checked_size(out_report.cast_const(), "out_report")?;
+    }
+    Ok(())
+}
+
+/// Finds the rotation axis from the surface normals (Wilczek et al. 2018, section 2.2).
+///
+/// `options` may be NULL for the defaults. `out_axis` (its `size` set) receives the
+/// axis, base to rim, in the mesh's frame. `out_report` (its `size` set) and
+/// `out_report_json` (the full report as JSON) may be NULL.
+///
+/// Returns `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` when the fragment does not determine
+/// its axis (a flat base piece, a near-spherical piece, one too small): the axis is
+/// still written, as a best guess not to be trusted, and the message gives the reason;
+/// ask the user for three points (`sherd_orient_from_three_points`).
+///
+/// # Safety
+/// `mesh` must be a live handle; `options` NULL or live; the out-pointers writable or,
+/// where allowed, NULL.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_orient_automatic(
+    mesh: *const SherdMesh,
+    options: *const SherdOrientOptions,
+    out_axis: *mut SherdAxis,
+    out_report: *mut SherdOrientReport,
+    out_report_json: *mut *mut SherdBuffer,
+) -> SherdStatus {
+    guard("sherd_orient_automatic", || {
+        let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
+        let options = unsafe { options_or_default(options, |builder| &builder.options) }?;
+        check_orientation_outputs(out_axis, out_report)?;
+        let orientation = crate::orient::orient_automatic(mesh, &options)?;
+        unsafe { hand_out_orientation(&orientation, out_axis, out_report, out_report_json) }
+    })
+}
+
+/// Finds the rotation axis from three points the user picked on one horizontal feature
+/// (the rim's edge, a groove, the base's edge): `points` holds 9 doubles, `x y z` of each,
+/// in the mesh's frame. The points must lie on the sherd (within the options' pick
+/// distance) and not on one line.
+///
+/// Outputs as for `sherd_orient_automatic`.
+///
+/// # Safety
+/// `mesh` must be a live handle; `points` must hold 9 doubles; `options` NULL or live;
+/// the out-pointers writable or, where allowed, NULL.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_orient_from_three_points(
+    mesh: *const SherdMesh,
+    points: *const f64,
+    options: *const SherdManualOptions,
+    out_axis: *mut SherdAxis,
+    out_report: *mut SherdOrientReport,
+    out_report_json: *mut *mut SherdBuffer,
+) -> SherdStatus {
+    guard("sherd_orient_from_three_points", || {
+        let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
+        let values = unsafe { host_slice(points, 3, 3, "points") }?;
+        if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+            return Err(Failure::invalid(format!("point {} has a non-finite coordinate", i / 3 + 1)));
+        }
+        let picked = [0, 1, 2].map(|k| Point::new(values[3 * k], values[3 * k + 1], values[3 * k + 2]));
+        let options = unsafe { options_or_default(options, |builder| &builder.options) }?;
+        check_orientation_outputs(out_axis, out_report)?;
+        let orientation = crate::orient::orient_from_three_points(mesh, picked, &options)?;
+        unsafe { hand_out_orientation(&orientation, out_axis, out_report, out_report_json) }
     })
 }

@@ -99,7 +99,8 @@ pub(crate) unsafe trait SizedStruct: Copy + Default {
     const MIN_SIZE: usize;
 }
 
-fn checked_size<T: SizedStruct>(pointer: *const T, name: &str) -> FfiResult<usize> {
+/// Checks a sized struct's pointer and `size` field; the number of bytes both sides know.
+pub(crate) fn checked_size<T: SizedStruct>(pointer: *const T, name: &str) -> FfiResult<usize> {
     check_pointer(pointer, name)?;
     let size = unsafe { pointer.cast::<usize>().read() };
     if size < T::MIN_SIZE {
@@ -143,4 +144,28 @@ pub(crate) unsafe fn read_sized<T: SizedStruct>(pointer: *const T, name: &str) -
 /// Rejects pointer arguments that must be checked before any work starts.
 pub(crate) fn require<T>(pointer: *const T, name: &str) -> FfiResult {
     check_pointer(pointer, name)
+}
+
+/// The file path in the NUL-terminated string `path` (bytes as the OS takes them on
+/// Unix; UTF-8 elsewhere).
+///
+/// # Safety
+/// A non-NULL `path` must point to a NUL-terminated string.
+pub(crate) unsafe fn path_from<'a>(path: *const std::ffi::c_char, name: &str) -> FfiResult<std::path::PathBuf> {
+    check_pointer(path, name)?;
+    let bytes = unsafe { std::ffi::CStr::from_ptr(path) }.to_bytes();
+    if bytes.is_empty() {
+        return Err(Failure::invalid(format!("`{name}` is an empty path")));
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::ffi::OsStrExt;
+        Ok(std::path::PathBuf::from(std::ffi::OsStr::from_bytes(bytes)))
+    }
+    #[cfg(not(unix))]
+    {
+        std::str::from_utf8(bytes)
+            .map(std::path::PathBuf::from)
+            .map_err(|e| Failure::invalid(format!("`{name}` is not UTF-8: {e}")))
+    }
 }

@@ -16,8 +16,6 @@
 //! no hash map. Candidates are re-evaluated when popped, since their neighbourhood
 //! may have changed.
 
-use std::cmp::Ordering;
-use std::collections::BinaryHeap;
 use std::time::Instant;
 
 use rayon::prelude::*;
@@ -50,6 +48,9 @@ pub struct DecimateOptions {
     /// one removes one, so the result has `target_faces` or one fewer, unless the
     /// topology or the boundary forbid further collapses (see the report).
     pub target_faces: usize,
+    /// When set, decimation also stops once at most this many vertices remain
+    /// (whichever target is reached first): the orientation asks for ~10k vertices.
+    pub target_vertices: Option<usize>,
     /// How boundaries are kept.
     pub boundary: BoundaryPolicy,
     /// Collapses that turn any remaining face's normal by more than this, from its
@@ -71,6 +72,7 @@ impl Default for DecimateOptions {
     fn default() -> Self {
         DecimateOptions {
             target_faces: 20_000,
+            target_vertices: None,
             boundary: BoundaryPolicy::Weighted { weight: 100.0 },
             max_normal_change_deg: 60.0,
             quality_threshold: Some(0.3),
@@ -83,6 +85,12 @@ impl DecimateOptions {
     /// The default options with another target face count.
     pub fn with_target_faces(target_faces: usize) -> Self {
         DecimateOptions { target_faces, ..Default::default() }
+    }
+
+    /// The default options aiming at a vertex count instead (the face target is then
+    /// one face, so only the vertex target stops decimation).
+    pub fn with_target_vertices(target_vertices: usize) -> Self {
+        DecimateOptions { target_faces: 1, target_vertices: Some(target_vertices), ..Default::default() }
     }
 }
 
@@ -115,7 +123,7 @@ pub struct DecimateReport {
     pub boundary_edges_after: usize,
     /// Edges with more than two faces in the input (their vertices are frozen).
     pub non_manifold_edges: usize,
-    /// True when the target face count was reached.
+    /// True when the target face (or vertex) count was reached.
     pub reached_target: bool,
     /// Largest collapse cost accepted, as an RMS distance in mm (the square root of
     /// the quadric error divided by the quadric's total area weight).
@@ -143,8 +151,8 @@ pub fn decimate_with_options(mesh: &Mesh, options: &DecimateOptions) -> Result<(
     if mesh.is_point_cloud() {
         return Err(Error::InvalidArgument("decimation needs a mesh with faces, got a point cloud".into()));
     }
-    if options.target_faces == 0 {
-        return Err(Error::InvalidArgument("decimation target must be at least one face".into()));
+    if options.target_faces == 0 || options.target_vertices == Some(0) {
+        return Err(Error::InvalidArgument("decimation target must be at least one face and one vertex".into()));
     }
     if !(options.max_normal_change_deg > 0.0 && options.max_normal_change_deg <= 180.0) {
         return Err(Error::InvalidArgument(format!(
@@ -163,7 +171,7 @@ pub fn decimate_with_options(mesh: &Mesh, options: &DecimateOptions) -> Result<(
         return Err(Error::InvalidArgument(format!("boundary weight must be finite and >= 0, got {weight}")));
     }
 
-    if mesh.face_count() <= options.target_faces {
+    if mesh.face_count() <= options.target_faces || options.target_vertices.is_some_and(|n| mesh.vertex_count() <= n) {
         let report = DecimateReport {
             input_vertices: mesh.vertex_count(),
             input_faces: mesh.face_count(),
@@ -176,7 +184,7 @@ pub fn decimate_with_options(mesh: &Mesh, options: &DecimateOptions) -> Result<(
         return Ok((mesh.clone(), report));
     }
     let mut collapser = Collapser::new(mesh, options);
-    collapser.run(options.target_faces);
+    collapser.run(options.target_faces, options.target_vertices.unwrap_or(0));
     let (result, mut report) = collapser.finish();
     report.elapsed_seconds = started.elapsed().as_secs_f64();
     Ok((result, report))
@@ -186,7 +194,7 @@ const NONE: u32 = u32::MAX;
 const BOUNDARY: u8 = 1;
 const FROZEN: u8 = 2;
 
-/// A candidate collapse of the edge `(first, second)`, cheapest first in the heap.
+/// A candidate collapse of the edge `(first, second)`.
 #[derive(Clone, Copy, Debug)]
 struct Candidate {
     cost: f32,
@@ -194,24 +202,6 @@ struct Candidate {
     second: u32,
     /// The collapse counter when pushed: stale once either endpoint changed later.
     pushed_at: u32,
-}
-
-impl PartialEq for Candidate {
-    fn eq(&self, other: &Self) -> bool {
-        self.cmp(other) == Ordering::Equal
-    }
-}
-impl Eq for Candidate {}
-impl PartialOrd for Candidate {
-    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
-        Some(self.cmp(other))
-    }
-}
-impl Ord for Candidate {
-    /// Reversed, so that `BinaryHeap` (a max-heap) pops the cheapest.
-    fn cmp(&self, other: &Self) -> Ordering {
-        other.cost.total_cmp(&self.cost)
-    }
 }
 
 /// A collapse as evaluated: where the kept vertex goes and at what cost.
@@ -226,11 +216,8 @@ struct Placement {
     cost: f64,
 }
 
-/// Why a collapse was refused.
-enum Refusal {
-    Topology,
-    Normals,
-}
+/// Why a collapse was refused by [`Collapser::check_faces`].
+struct Refusal;
 
 struct Collapser {
     /// Positions relative to `origin`, so that quadrics of scans far from the origin
@@ -260,7 +247,7 @@ struct Collapser {
     colors: Option<Vec<[f32; 4]>>,
     normals: Option<Vec<Vector>>,
     quality: Option<Vec<f32>>,
-    heap: BinaryHeap<Candidate>,
+    heap: CandidateQueue,
     collapses: u32,
     min_cos_normal_change: f64,
     quality_threshold: Option<f64>,
@@ -332,7 +319,7 @@ impl Collapser {
             }),
             normals: mesh.normals.clone(),
             quality: mesh.quality.clone(),
-            heap: BinaryHeap::new(),
+            heap: CandidateQueue::default(),
             collapses: 0,
             min_cos_normal_change: options.max_normal_change_deg.to_radians().cos(),
             quality_threshold: options.quality_threshold,
@@ -341,7 +328,7 @@ impl Collapser {
             report,
         };
         let edges = collapser.build_quadrics(options.boundary);
-        collapser.push_initial_candidates(&edges);
+        collapser.push_initial_candidates(edges);
         collapser
     }
 
@@ -349,14 +336,14 @@ impl Collapser {
     /// non-manifold vertices, and sums the face and boundary plane quadrics. Returns
     /// the manifold edges (one or two faces) as `low << 32 | high` keys.
     fn build_quadrics(&mut self, boundary: BoundaryPolicy) -> Vec<u64> {
-        let mut edges: Vec<(u64, u32)> = Vec::with_capacity(3 * self.triangles.len());
-        for (face, &[a, b, c]) in self.triangles.iter().enumerate() {
-            for (slot, (from, to)) in [(a, b), (b, c), (c, a)].into_iter().enumerate() {
-                let key = (u64::from(from.min(to)) << 32) | u64::from(from.max(to));
-                edges.push((key, (3 * face + slot) as u32));
-            }
-        }
-        edges.par_sort_unstable_by_key(|&(key, _)| key);
+        // Keys only (8 bytes per half-edge): this is the largest temporary.
+        let mut edges: Vec<u64> = self
+            .triangles
+            .iter()
+            .flat_map(|&[a, b, c]| [(a, b), (b, c), (c, a)])
+            .map(|(from, to)| (u64::from(from.min(to)) << 32) | u64::from(from.max(to)))
+            .collect();
+        edges.par_sort_unstable();
 
         for triangle in &self.triangles {
             let [a, b, c] = triangle.map(|v| self.positions[v as usize]);
@@ -372,30 +359,30 @@ impl Collapser {
             }
         }
 
-        let mut manifold_edges = Vec::with_capacity(edges.len() / 2 + 1);
-        let mut run_start = 0;
+        // Classify each run of equal keys, and keep the manifold edges, once each, in
+        // the front of the same vector.
+        let (mut run_start, mut manifold_count) = (0, 0);
         while run_start < edges.len() {
-            let key = edges[run_start].0;
-            let run_end = run_start + edges[run_start..].iter().take_while(|(k, _)| *k == key).count();
-            let (low, high) = ((key >> 32) as usize, (key & 0xffff_ffff) as usize);
-            match run_end - run_start {
-                1 => {
+            let key = edges[run_start];
+            let run_end = run_start + edges[run_start..].iter().take_while(|&&k| k == key).count();
+            let (low, high) = ((key >> 32) as u32, key as u32);
+            if run_end - run_start > 2 {
+                self.report.non_manifold_edges += 1;
+                self.flags[low as usize] |= FROZEN;
+                self.flags[high as usize] |= FROZEN;
+            } else {
+                if run_end - run_start == 1 {
                     self.report.boundary_edges_before += 1;
-                    self.flags[low] |= BOUNDARY;
-                    self.flags[high] |= BOUNDARY;
-                    let corner = edges[run_start].1 as usize;
-                    self.add_boundary_quadric(corner, boundary);
-                    manifold_edges.push(key);
+                    self.flags[low as usize] |= BOUNDARY;
+                    self.flags[high as usize] |= BOUNDARY;
+                    self.add_boundary_quadric(low, high, boundary);
                 }
-                2 => manifold_edges.push(key),
-                _ => {
-                    self.report.non_manifold_edges += 1;
-                    self.flags[low] |= FROZEN;
-                    self.flags[high] |= FROZEN;
-                }
+                edges[manifold_count] = key;
+                manifold_count += 1;
             }
             run_start = run_end;
         }
+        edges.truncate(manifold_count);
         if boundary == BoundaryPolicy::Fixed {
             for flag in &mut self.flags {
                 if *flag & BOUNDARY != 0 {
@@ -404,16 +391,19 @@ impl Collapser {
             }
         }
         self.report.frozen_vertices = self.flags.iter().filter(|&&f| f & FROZEN != 0).count();
-        manifold_edges
+        edges
     }
 
-    /// The plane through the boundary edge starting at `corner`, perpendicular to its
-    /// face, added to both endpoints.
-    fn add_boundary_quadric(&mut self, corner: usize, boundary: BoundaryPolicy) {
+    /// The plane through the boundary edge `low`-`high`, perpendicular to its face,
+    /// added to both endpoints.
+    fn add_boundary_quadric(&mut self, low: u32, high: u32, boundary: BoundaryPolicy) {
         let BoundaryPolicy::Weighted { weight } = boundary else { return };
-        let (face, slot) = (corner / 3, corner % 3);
-        let triangle = self.triangles[face];
-        let [from, to, opposite] = [triangle[slot], triangle[(slot + 1) % 3], triangle[(slot + 2) % 3]];
+        let Some(triangle) = self.corners_of(low).map(|c| self.triangles[c as usize / 3]).find(|t| t.contains(&high))
+        else {
+            return;
+        };
+        let slot = (0..3).find(|&s| triangle[s] != low && triangle[s] != high).expect("a triangle has three vertices");
+        let [opposite, from, to] = [triangle[slot], triangle[(slot + 1) % 3], triangle[(slot + 2) % 3]];
         let [p, q, r] = [from, to, opposite].map(|v| self.positions[v as usize]);
         let edge = q - p;
         let face_normal = edge.cross(&(r - p));
@@ -424,17 +414,23 @@ impl Collapser {
     }
 
     /// Evaluates every edge once (in parallel: evaluation only reads) and heapifies.
-    fn push_initial_candidates(&mut self, edges: &[u64]) {
+    fn push_initial_candidates(&mut self, edges: Vec<u64>) {
         let this = &*self;
-        let candidates: Vec<Candidate> = edges
+        // Indexed, so rayon writes straight into the two vectors (an unindexed
+        // collect would hold a second copy). Edges between frozen vertices are queued
+        // at infinite cost and never collapse.
+        let (mut costs, mut candidates) = (Vec::new(), Vec::new());
+        edges
             .par_iter()
-            .filter_map(|&key| {
+            .map(|&key| {
                 let (first, second) = ((key >> 32) as u32, key as u32);
-                let placement = this.evaluate(first, second).ok()?;
-                Some(Candidate { cost: placement.cost as f32, first, second, pushed_at: 0 })
+                let cost = this.place(first, second).map_or(f32::INFINITY, |placement| placement.cost as f32);
+                (cost, [first, second, 0])
             })
-            .collect();
-        self.heap = BinaryHeap::from(candidates);
+            .unzip_into_vecs(&mut costs, &mut candidates);
+        drop(edges);
+        self.heap = CandidateQueue { costs, edges: candidates };
+        self.heap.heapify();
     }
 
     /// A mark value no vertex carries yet, for neighbourhood queries.
@@ -455,10 +451,11 @@ impl Collapser {
         self.corners_of(a).filter(|&c| self.triangles[c as usize / 3].contains(&b)).count()
     }
 
-    /// Where the collapse of `first`/`second` puts the kept vertex and what it costs,
-    /// or why it must not happen (normals). Topology is checked separately, in
-    /// [`Collapser::topology_allows`], because it needs scratch marks.
-    fn evaluate(&self, first: u32, second: u32) -> std::result::Result<Placement, Refusal> {
+    /// Where the collapse of `first`/`second` puts the kept vertex and its quadric
+    /// cost, a lower bound of the full cost ([`Collapser::check_faces`] may raise it):
+    /// candidates are queued with it and checked only when they come out of the queue.
+    /// `None` when both endpoints are frozen.
+    fn place(&self, first: u32, second: u32) -> Option<Placement> {
         let (i, j) = (first as usize, second as usize);
         let (p, q) = (self.positions[i], self.positions[j]);
         let quadric = self.quadrics[i] + self.quadrics[j];
@@ -466,14 +463,13 @@ impl Collapser {
         // boundary planes can leave it by several times the noise.
         let (frozen, on_boundary) = (|v: usize| self.flags[v] & FROZEN != 0, |v: usize| self.flags[v] & BOUNDARY != 0);
         let (position, t) = match () {
-            _ if frozen(i) && frozen(j) => return Err(Refusal::Topology),
+            _ if frozen(i) && frozen(j) => return None,
             _ if frozen(i) => (p, 0.0),
             _ if frozen(j) => (q, 1.0),
             _ if on_boundary(i) && on_boundary(j) => quadric.minimizer_on_segment(&p, &q),
             _ if on_boundary(i) => (p, 0.0),
             _ if on_boundary(j) => (q, 1.0),
             _ => {
-                let on_edge = quadric.minimizer_on_segment(&p, &q);
                 let optimal = self.optimal_placement.then(|| quadric.minimizer()).flatten();
                 match optimal {
                     // A minimiser far from the edge comes from a nearly singular quadric
@@ -483,13 +479,28 @@ impl Collapser {
                         let t = ((x - p).dot(&direction) / direction.norm_squared()).clamp(0.0, 1.0);
                         (x, t)
                     }
-                    _ => on_edge,
+                    _ => quadric.minimizer_on_segment(&p, &q),
                 }
             }
         };
+        let error = quadric.error_at(&position);
+        Some(Placement { position, t, error, cost: error.max(self.cost_floor) })
+    }
 
-        let mut worst_quality: f64 = 1.0;
+    /// Refuses the collapse if a remaining face would degenerate or turn by more than
+    /// the limit from its current or input normal, and applies the sliver penalty to
+    /// `placement.cost`. Square roots are avoided: this runs for every popped candidate.
+    fn check_faces(&self, first: u32, second: u32, placement: &mut Placement) -> std::result::Result<(), Refusal> {
+        let position = placement.position;
+        let cos_limit = self.min_cos_normal_change;
+        // dot < cos_limit |u| |v|, given dot and |u|² |v|², without square roots.
+        let turned_too_far = |dot: f64, squared_lengths: f64| {
+            let bound = cos_limit * cos_limit * squared_lengths;
+            if cos_limit >= 0.0 { dot < 0.0 || dot * dot < bound } else { dot < 0.0 && dot * dot > bound }
+        };
+        let mut worst_squared_quality: f64 = 1.0;
         for (vertex, other) in [(first, second), (second, first)] {
+            let moved = self.positions[vertex as usize];
             for corner in self.corners_of(vertex) {
                 let triangle = self.triangles[corner as usize / 3];
                 if triangle.contains(&other) {
@@ -498,32 +509,30 @@ impl Collapser {
                 let slot = corner as usize % 3;
                 let a = self.positions[triangle[(slot + 1) % 3] as usize];
                 let b = self.positions[triangle[(slot + 2) % 3] as usize];
-                let before = (a - self.positions[vertex as usize]).cross(&(b - self.positions[vertex as usize]));
+                let before = (a - moved).cross(&(b - moved));
                 let after = (a - position).cross(&(b - position));
-                let (before_length, after_length) = (before.norm(), after.norm());
+                let (before_squared, after_squared) = (before.norm_squared(), after.norm_squared());
                 let input_normal = Vector::from(self.input_normals[corner as usize / 3].map(f64::from));
-                if !(after_length > 1e-12 * before_length)
-                    || before.dot(&after) < self.min_cos_normal_change * before_length * after_length
-                    || input_normal.dot(&after) < self.min_cos_normal_change * after_length
+                if !(after_squared > 1e-24 * before_squared)
+                    || turned_too_far(before.dot(&after), before_squared * after_squared)
+                    || (input_normal != Vector::zeros() && turned_too_far(input_normal.dot(&after), after_squared))
                 {
-                    return Err(Refusal::Normals);
+                    return Err(Refusal);
                 }
                 if self.quality_threshold.is_some() {
                     let squared_edges = (a - position).norm_squared() + (b - position).norm_squared() + (b - a).norm_squared();
-                    // 4√3 area / Σ edge² with area = |after| / 2.
-                    worst_quality = worst_quality.min(2.0 * 3f64.sqrt() * after_length / squared_edges);
+                    // (4√3 area / Σ edge²)² with area = |after| / 2.
+                    worst_squared_quality = worst_squared_quality.min(12.0 * after_squared / (squared_edges * squared_edges));
                 }
             }
         }
-
-        let error = quadric.error_at(&position);
-        let mut cost = error.max(self.cost_floor);
+        let worst_quality = worst_squared_quality.sqrt();
         if let Some(threshold) = self.quality_threshold
             && worst_quality < threshold
         {
-            cost *= threshold / worst_quality.max(1e-6);
+            placement.cost *= threshold / worst_quality.max(1e-6);
         }
-        Ok(Placement { position, t, error, cost })
+        Ok(())
     }
 
     /// The link condition (Dey et al. 1999): the vertices adjacent to both endpoints
@@ -577,10 +586,11 @@ impl Collapser {
         merged_degree >= if on_boundary { 2 } else { 3 }
     }
 
-    fn run(&mut self, target_faces: usize) {
+    fn run(&mut self, target_faces: usize, target_vertices: usize) {
         // The largest error / area ratio so far, as a fraction to avoid dividing in the loop.
         let mut max_error_area: (f64, f64) = (0.0, 1.0);
-        while self.live_faces > target_faces {
+        let mut live_vertices = self.first_corner.iter().filter(|&&c| c != NONE).count();
+        while self.live_faces > target_faces && live_vertices > target_vertices {
             let Some(candidate) = self.heap.pop() else { break };
             let (a, b) = (candidate.first, candidate.second);
             if !self.vertex_alive[a as usize]
@@ -594,19 +604,13 @@ impl Collapser {
                 self.report.refused_for_topology += 1;
                 continue;
             }
-            let placement = match self.evaluate(a, b) {
-                Ok(placement) => placement,
-                Err(Refusal::Normals) => {
-                    self.report.refused_for_normals += 1;
-                    continue;
-                }
-                Err(Refusal::Topology) => {
-                    self.report.refused_for_topology += 1;
-                    continue;
-                }
-            };
-            // The neighbourhood changed since the push and made it dearer: queue it
-            // again at its true cost instead of collapsing out of order.
+            let Some(mut placement) = self.place(a, b) else { continue };
+            if self.check_faces(a, b, &mut placement).is_err() {
+                self.report.refused_for_normals += 1;
+                continue;
+            }
+            // Queued at a lower bound (quadric only, or an older neighbourhood): queue
+            // it again at its true cost instead of collapsing out of order.
             if placement.cost as f32 > candidate.cost * 1.0001 {
                 self.heap.push(Candidate { cost: placement.cost as f32, pushed_at: self.collapses, ..candidate });
                 continue;
@@ -616,10 +620,11 @@ impl Collapser {
                 max_error_area = (placement.error, area);
             }
             self.collapse(a, b, placement);
+            live_vertices -= 1;
             self.compact_heap_if_stale();
         }
         self.report.max_collapse_error_mm = (max_error_area.0 / max_error_area.1).sqrt();
-        self.report.reached_target = self.live_faces <= target_faces;
+        self.report.reached_target = self.live_faces <= target_faces || live_vertices <= target_vertices;
     }
 
     /// Merges `removed` into `kept` at the placement, then queues `kept`'s edges.
@@ -708,7 +713,7 @@ impl Collapser {
             }
         }
         for &neighbour in &neighbours {
-            if let Ok(placement) = self.evaluate(vertex, neighbour) {
+            if let Some(placement) = self.place(vertex, neighbour) {
                 self.heap.push(Candidate {
                     cost: placement.cost as f32,
                     first: vertex,
@@ -720,21 +725,18 @@ impl Collapser {
         self.neighbours = neighbours;
     }
 
-    /// Lazy deletion lets stale entries pile up; drop them when they dominate.
+    /// Lazy deletion lets stale entries pile up; filtering them out in one linear
+    /// pass whenever the queue outgrows the live edges (about 1.5 per face) is far
+    /// cheaper than popping them one by one (on 500k faces: 0.4M pops instead of 1.8M).
     fn compact_heap_if_stale(&mut self) {
-        if self.heap.len() < 4 * self.live_faces + 4096 {
+        if self.heap.len() < 2 * self.live_faces + 4096 {
             return;
         }
-        let heap = std::mem::take(&mut self.heap);
-        let mut entries = heap.into_vec();
-        entries.retain(|c| {
+        let (alive, changed_at) = (&self.vertex_alive, &self.changed_at);
+        self.heap.retain(|c| {
             let (a, b) = (c.first as usize, c.second as usize);
-            self.vertex_alive[a]
-                && self.vertex_alive[b]
-                && self.changed_at[a] <= c.pushed_at
-                && self.changed_at[b] <= c.pushed_at
+            alive[a] && alive[b] && changed_at[a] <= c.pushed_at && changed_at[b] <= c.pushed_at
         });
-        self.heap = BinaryHeap::from(entries);
     }
 
     fn finish(mut self) -> (Mesh, DecimateReport) {
@@ -794,5 +796,97 @@ impl Iterator for CornerIter<'_> {
         let corner = self.current;
         self.current = self.next_corner[corner as usize];
         Some(corner)
+    }
+}
+
+/// A 4-ary min-heap of candidates with the costs in their own array: popping is the
+/// inner loop's bottleneck, and a sift-down that compares four adjacent `f32` costs
+/// touches one cache line per level, over half as many levels as a binary heap.
+/// (Measured on 500k faces: `std`'s `BinaryHeap` of whole entries spent twice as
+/// long; keys pointing into a slab made the periodic compaction slower than it saved.)
+#[derive(Default)]
+struct CandidateQueue {
+    costs: Vec<f32>,
+    /// `(first, second, pushed_at)`, parallel to `costs`.
+    edges: Vec<[u32; 3]>,
+}
+
+impl CandidateQueue {
+    fn heapify(&mut self) {
+        for index in (0..self.costs.len().div_ceil(4)).rev() {
+            self.sift_down(index);
+        }
+    }
+
+    /// Keeps only the candidates for which `keep` holds.
+    fn retain(&mut self, mut keep: impl FnMut(&Candidate) -> bool) {
+        let mut kept = 0;
+        for index in 0..self.costs.len() {
+            let [first, second, pushed_at] = self.edges[index];
+            if keep(&Candidate { cost: self.costs[index], first, second, pushed_at }) {
+                self.costs[kept] = self.costs[index];
+                self.edges[kept] = self.edges[index];
+                kept += 1;
+            }
+        }
+        self.costs.truncate(kept);
+        self.edges.truncate(kept);
+        self.heapify();
+    }
+
+    fn len(&self) -> usize {
+        self.costs.len()
+    }
+
+    fn push(&mut self, candidate: Candidate) {
+        let edge = [candidate.first, candidate.second, candidate.pushed_at];
+        self.costs.push(candidate.cost);
+        self.edges.push(edge);
+        let mut index = self.costs.len() - 1;
+        while index > 0 {
+            let parent = (index - 1) / 4;
+            if self.costs[parent] <= candidate.cost {
+                break;
+            }
+            self.costs[index] = self.costs[parent];
+            self.edges[index] = self.edges[parent];
+            index = parent;
+        }
+        self.costs[index] = candidate.cost;
+        self.edges[index] = edge;
+    }
+
+    fn pop(&mut self) -> Option<Candidate> {
+        let cost = *self.costs.first()?;
+        let [first, second, pushed_at] = self.edges[0];
+        let (last_cost, last_edge) = (self.costs.pop().expect("not empty"), self.edges.pop().expect("parallel"));
+        if !self.costs.is_empty() {
+            self.costs[0] = last_cost;
+            self.edges[0] = last_edge;
+            self.sift_down(0);
+        }
+        Some(Candidate { cost, first, second, pushed_at })
+    }
+
+    fn sift_down(&mut self, mut index: usize) {
+        let (cost, edge) = (self.costs[index], self.edges[index]);
+        let length = self.costs.len();
+        loop {
+            let first_child = 4 * index + 1;
+            if first_child >= length {
+                break;
+            }
+            let children = &self.costs[first_child..(first_child + 4).min(length)];
+            let (offset, &smallest) =
+                children.iter().enumerate().min_by(|a, b| a.1.total_cmp(b.1)).expect("a child");
+            if smallest >= cost {
+                break;
+            }
+            self.costs[index] = smallest;
+            self.edges[index] = self.edges[first_child + offset];
+            index = first_child + offset;
+        }
+        self.costs[index] = cost;
+        self.edges[index] = edge;
     }
 }

@@ -8,6 +8,7 @@
 //! ([`line_complex`]) -> multi-start Nelder-Mead and MM refinement ([`halir`],
 //! [`mm_regression`]) -> sense base to rim ([`direction`]) -> verdict ([`verdict`]).
 
+pub mod accuracy;
 pub mod axis;
 pub mod direction;
 pub mod halir;
@@ -272,7 +273,23 @@ fn working_copy(mesh: &Mesh, options: &OrientOptions) -> Result<Mesh> {
             picked.iter().map(|&i| normals[i]).collect(),
         ));
     }
-    Ok(mesh.clone())
+    // Quadric decimation to about two faces per wanted vertex, then Laplacian smoothing:
+    // decoration and scan noise carry no information on the axis, and noisy normals bias
+    // a least-squares axis (errors in the variables).
+    let mut working = if mesh.face_count() > 2 * options.target_vertex_count {
+        crate::mesh::decimate::decimate(mesh, 2 * options.target_vertex_count)?
+    } else {
+        mesh.clone()
+    };
+    if options.smoothing_iterations > 0 {
+        let smoothing = crate::mesh::smooth::SmoothOptions {
+            iterations: options.smoothing_iterations,
+            ..Default::default()
+        };
+        crate::mesh::smooth::laplacian_smooth(&mut working, &smoothing);
+    }
+    working.normals = None; // recomputed from the smoothed faces by NormalLines
+    Ok(working)
 }
 
 /// The lines on the surface of revolution: the opposite-normal test on meshes, all lines
@@ -291,7 +308,15 @@ fn select_surface_of_revolution(
         report.opposite_filter = "not applied (point cloud: no faces to cast rays at)".into();
         return lines.clone();
     }
-    let filter = opposite_normals::filter_opposite_normals(lines, confidence, |_, _| None);
+    let bvh = crate::mesh::spatial::Bvh::new(working);
+    // Start a hair inside the surface so that the vertex's own faces are not hit.
+    let inset = 1e-6 * lines.size_mm();
+    let filter = opposite_normals::filter_opposite_normals(lines, confidence, |origin, direction| {
+        let start = origin + direction * inset;
+        bvh.closest_hit(&start, direction).map(|hit| {
+            (working.face_normal_scaled(hit.face).normalize(), hit.distance + inset)
+        })
+    });
     report.wall_thickness_mm = filter.median_thickness_mm.is_finite().then_some(filter.median_thickness_mm);
     // A piece that is mostly fracture (tiny sherds) or a single skin (an open scan) leaves
     // too little: then the robust regression alone separates the outliers.

@@ -2,6 +2,7 @@
 //! 2018, section 2.2, the lines `n_i` of equation (1)). On a surface of revolution every
 //! such line meets the axis; every estimator of `orient` works on these lines.
 
+use crate::mesh::normals::{compute_vertex_normals, NormalWeighting};
 use crate::mesh::{Mesh, Point, Vector};
 use crate::{Error, Result};
 
@@ -30,9 +31,10 @@ impl NormalLines {
         self.points.is_empty()
     }
 
-    /// Lines of a mesh: area-weighted vertex normals when it has faces (the normals stored
-    /// in the mesh are ignored then, since scanners' normals are often noisier than the
-    /// geometry), the stored normals with unit weights for a point cloud.
+    /// Lines of a mesh: face-area-weighted vertex normals when it has faces (the normals
+    /// stored in the mesh are ignored then: they may predate smoothing, and scanners'
+    /// normals are often noisier than the geometry), the stored normals with unit weights
+    /// for a point cloud.
     pub fn from_mesh(mesh: &Mesh) -> Result<Self> {
         mesh.validate()?;
         if mesh.positions.is_empty() {
@@ -44,7 +46,7 @@ impl NormalLines {
             })?;
             (normals, vec![1.0; mesh.vertex_count()])
         } else {
-            area_weighted_normals(mesh)
+            (compute_vertex_normals(mesh, NormalWeighting::Area), vertex_areas(mesh))
         };
         let mut lines = NormalLines::default();
         for (i, (normal, weight)) in normals.iter().zip(&weights).enumerate() {
@@ -96,19 +98,15 @@ impl NormalLines {
     }
 }
 
-/// Face-area-weighted vertex normals and each vertex's share (a third) of its faces' area.
-/// Area weighting is what makes the normals of a decimated mesh (very uneven triangles)
-/// unbiased estimates of the surface normal.
-fn area_weighted_normals(mesh: &Mesh) -> (Vec<Vector>, Vec<f64>) {
-    let mut normals = vec![Vector::zeros(); mesh.vertex_count()];
+/// Each vertex's share (a third) of the area of its faces: the weight of its normal line,
+/// so that the dense and the sparse parts of a decimated mesh count by area.
+fn vertex_areas(mesh: &Mesh) -> Vec<f64> {
     let mut areas = vec![0.0; mesh.vertex_count()];
     for face in 0..mesh.face_count() {
-        let scaled = mesh.face_normal_scaled(face); // length = twice the area
-        let third_area = scaled.norm() / 6.0;
+        let third_area = mesh.face_area(face) / 3.0;
         for &v in &mesh.triangles[face] {
-            normals[v as usize] += scaled;
             areas[v as usize] += third_area;
         }
     }
-    (normals, areas)
+    areas
 }

@@ -1,2 +1,329 @@
 //! Refinement of a pre-oriented axis (Wilczek et al. 2018, section 2.3): one file per
-//! criterion (circles, pareto, profile, tangent) behind a common objective.
+//! criterion behind a common [`objective::Objective`]:
+//!
+//! * [`circles`]: horizontal circles, radius variance (Eq. 2);
+//! * [`pareto`]: circle centres and residuals on a Pareto front (Eq. 3-4);
+//! * [`profile`]: vertical profile superposition (Eq. 5-6);
+//! * [`tangent`]: tangent plane to rim or base (Eq. 7);
+//!
+//! with Chernov's circle fits ([`circle_fit`]), the sections they share ([`sections`])
+//! and bootstrap intervals ([`uncertainty`]). [`refine`] runs one criterion, or picks one
+//! ([`Criterion::Auto`]), and never returns an axis its own criterion rates worse than
+//! the start.
+
+pub mod circle_fit;
+pub mod circles;
+pub mod objective;
+pub mod pareto;
+pub mod profile;
+pub mod sections;
+pub mod tangent;
+pub mod uncertainty;
+
+use std::time::Instant;
+
+use serde::{Deserialize, Serialize};
+
+pub use objective::FreeParameters;
+pub use pareto::{ParetoChoice, ParetoOptions, ParetoPoint};
+pub use profile::ProfileMethod;
+pub use sections::Surface;
+pub use tangent::Edge;
+
+use crate::mesh::Mesh;
+use crate::orient::Axis;
+use crate::{Error, Result};
+use objective::{minimize, Minimum, Objective, SearchSettings};
+use sections::{AxisParameters, PreparedSurface};
+
+/// The refinement criterion.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+pub enum Criterion {
+    /// Horizontal circles, radius variance (Eq. 2).
+    Circles,
+    /// Circle centres and residuals on a Pareto front (Eq. 3-4).
+    Pareto,
+    /// Vertical profile superposition (Eq. 5 or 6, see [`ProfileMethod`]).
+    Profile,
+    /// Tangent plane to the rim or base (Eq. 7), then the circles criterion for the position.
+    Tangent,
+    /// The tangent plane where the fragment keeps a level rim or base, the circles
+    /// criterion otherwise.
+    #[default]
+    Auto,
+}
+
+/// Settings of [`refine`].
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RefineOptions {
+    /// The criterion.
+    pub criterion: Criterion,
+    /// Inner, outer or both skins.
+    pub surface: Surface,
+    /// Horizontal sections; `None`: as many as the mesh resolution allows (at least 12).
+    pub section_count: Option<usize>,
+    /// Largest tilt from the start axis searched, degrees (the paper's +-10).
+    pub search_bound_deg: f64,
+    /// All four parameters, or only the shifts after a manual three-point pre-orientation.
+    pub free: FreeParameters,
+    /// Form of the profile criterion.
+    pub profile_method: ProfileMethod,
+    /// Settings of the Pareto search.
+    pub pareto: ParetoOptions,
+    /// Epsilon of Eq. 7: rim/base points lower than this below the extreme are dropped, mm.
+    pub tangent_tolerance_mm: f64,
+    /// Vertical sections for the tangent criterion.
+    pub vertical_section_count: usize,
+    /// Rim or base for the tangent criterion; `None`: the one whose extremes are level.
+    pub edge: Option<Edge>,
+}
+
+impl Default for RefineOptions {
+    fn default() -> Self {
+        RefineOptions {
+            criterion: Criterion::Auto,
+            surface: Surface::Both,
+            section_count: None,
+            search_bound_deg: 10.0,
+            free: FreeParameters::All,
+            profile_method: ProfileMethod::default(),
+            pareto: ParetoOptions::default(),
+            tangent_tolerance_mm: 3.0,
+            vertical_section_count: 24,
+            edge: None,
+        }
+    }
+}
+
+/// Wall-clock times of one run, milliseconds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct RefineTimings {
+    /// Splitting the skins and placing the sections.
+    pub prepare_ms: f64,
+    /// The search.
+    pub search_ms: f64,
+    /// Everything.
+    pub total_ms: f64,
+}
+
+/// The report of one refinement: what ran, with which settings, and how it went.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RefineReport {
+    /// The criterion that ran (for `Auto`, the one it chose).
+    pub method: Criterion,
+    /// Why `Auto` chose it, or the criterion asked for.
+    pub reason: String,
+    /// The surface used.
+    pub surface: Surface,
+    /// The options as given.
+    pub parameters: RefineOptions,
+    /// The rim or base used by the tangent criterion.
+    pub edge: Option<Edge>,
+    /// Optimiser iterations (Nelder-Mead) or cost evaluations (Pareto).
+    pub iterations: u64,
+    /// Square root of the criterion's cost at the start axis (mm for all criteria but
+    /// Pareto, whose value is the circle residual).
+    pub start_residual_mm: f64,
+    /// The same at the returned axis.
+    pub residual_mm: f64,
+    /// Angle between the start and the returned axis, degrees.
+    pub tilt_deg: f64,
+    /// Distance the axis moved at the fragment's centroid height, millimetres.
+    pub shift_mm: f64,
+    /// True when the criterion did not improve on the start axis, which is returned.
+    pub kept_start: bool,
+    /// Horizontal sections placed.
+    pub section_count: usize,
+    /// Vertices on the skins used.
+    pub skin_vertex_count: usize,
+    /// Timings.
+    pub timings: RefineTimings,
+}
+
+/// The refined axis, the report, and the Pareto front when that criterion ran.
+#[derive(Clone, Debug)]
+pub struct Refinement {
+    /// The refined axis (scan frame, base to rim as the start axis).
+    pub axis: Axis,
+    /// What happened.
+    pub report: RefineReport,
+    /// The non-dominated solutions, for the Pareto criterion.
+    pub pareto_front: Option<Vec<ParetoPoint>>,
+    /// The Pareto solution chosen (one of `pareto_front` or their mean).
+    pub pareto_chosen: Option<ParetoPoint>,
+}
+
+fn validate(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Result<()> {
+    if !axis.point.iter().chain(axis.direction.iter()).all(|c| c.is_finite()) {
+        return Err(Error::InvalidArgument(format!("start axis is not finite: {:?}", axis.record())));
+    }
+    if !(options.search_bound_deg > 0.0 && options.search_bound_deg <= 45.0) {
+        return Err(Error::InvalidArgument(format!(
+            "search_bound_deg must be in (0, 45], got {}",
+            options.search_bound_deg
+        )));
+    }
+    if !(options.tangent_tolerance_mm > 0.0) {
+        return Err(Error::InvalidArgument(format!(
+            "tangent_tolerance_mm must be positive, got {}",
+            options.tangent_tolerance_mm
+        )));
+    }
+    if options.section_count == Some(0) {
+        return Err(Error::InvalidArgument("section_count must be at least 1".into()));
+    }
+    if let Some((i, p)) = mesh.positions.iter().enumerate().find(|(_, p)| !p.iter().all(|c| c.is_finite())) {
+        return Err(Error::InvalidArgument(format!("vertex {i} is not finite: {p:?}")));
+    }
+    Ok(())
+}
+
+/// Refines `axis` (a pre-orientation of `mesh`) by the criterion of `options`.
+///
+/// The result is never worse than the start by the criterion's own measure: when the
+/// search does not improve on it, the start axis is returned and the report says so.
+pub fn refine(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Result<Refinement> {
+    let started = Instant::now();
+    validate(mesh, axis, options)?;
+    let surface = PreparedSurface::new(mesh, axis, options.surface, options.section_count)?;
+    let prepare_ms = started.elapsed().as_secs_f64() * 1e3;
+    let search_started = Instant::now();
+    let (method, reason, edge) = choose_criterion(&surface, options);
+    let bound = options.search_bound_deg.to_radians();
+    let settings = SearchSettings { free: options.free, tilt_bound_rad: bound, ..Default::default() };
+    let start = [0.0; 4];
+    let mut pareto_front = None;
+    let mut pareto_chosen = None;
+    let (parameters, start_cost, cost, iterations, kept_start) = match method {
+        Criterion::Circles | Criterion::Auto => {
+            let objective = circles::CirclesObjective::new(&surface);
+            run_guarded(&objective, start, &settings)?
+        }
+        Criterion::Profile => {
+            let objective = profile::ProfileObjective { surface: &surface, method: options.profile_method };
+            run_guarded(&objective, start, &settings)?
+        }
+        Criterion::Tangent => {
+            let edge = edge.expect("the tangent criterion always has an edge");
+            let tangent = tangent::TangentObjective::new(&surface, edge, options.tangent_tolerance_mm, options.vertical_section_count);
+            let tilts = SearchSettings { free: FreeParameters::TiltsOnly, ..settings };
+            let (tilted, tangent_start, tangent_cost, tangent_iterations, tangent_kept) = if options.free == FreeParameters::ShiftsOnly {
+                (start, tangent.value(&start), tangent.value(&start), 0, true)
+            } else {
+                run_guarded(&tangent, start, &tilts)?
+            };
+            let circles = circles::CirclesObjective::new(&surface);
+            let shifts = SearchSettings { free: FreeParameters::ShiftsOnly, ..settings };
+            let placed = minimize(&circles, tilted, &shifts)?;
+            (placed.parameters, tangent_start, tangent_cost, tangent_iterations + placed.iterations, tangent_kept)
+        }
+        Criterion::Pareto => {
+            let search = pareto::search(&surface, [0.0, 0.0], bound, &options.pareto).ok_or_else(|| {
+                Error::DegenerateGeometry(format!(
+                    "no tilt within {} degrees gives two horizontal sections with at least {} points and {} degrees of arc",
+                    options.search_bound_deg, options.pareto.min_section_points, options.pareto.min_sector_angle_deg
+                ))
+            })?;
+            let at_start = pareto::evaluate(&surface, 0.0, 0.0, &options.pareto);
+            let chosen = pareto::evaluate(&surface, search.chosen[0], search.chosen[1], &options.pareto)
+                .unwrap_or(ParetoPoint { parameters: search.chosen, ..search.front[0] });
+            // Keep the start when it dominates the chosen solution.
+            let start_dominates = at_start.is_some_and(|s| {
+                s.centre_dispersion_mm2 <= chosen.centre_dispersion_mm2 && s.circle_residual_mm2 <= chosen.circle_residual_mm2
+            });
+            let start_cost = at_start.map_or(f64::INFINITY, |s| s.circle_residual_mm2);
+            pareto_front = Some(search.front.clone());
+            pareto_chosen = Some(chosen);
+            let (parameters, cost) = match (start_dominates, at_start) {
+                (true, Some(s)) => (s.parameters, s.circle_residual_mm2),
+                _ => (chosen.parameters, chosen.circle_residual_mm2),
+            };
+            (parameters, start_cost, cost, search.evaluations as u64, start_dominates)
+        }
+    };
+    let refined = surface.axis_of(&parameters);
+    let refined = orient_like(&refined, axis);
+    let centroid = surface.start_frame.inverse() * crate::mesh::Point::origin();
+    let report = RefineReport {
+        method,
+        reason,
+        surface: options.surface,
+        parameters: options.clone(),
+        edge,
+        iterations,
+        start_residual_mm: start_cost.max(0.0).sqrt(),
+        residual_mm: cost.max(0.0).sqrt(),
+        tilt_deg: refined.line_angle_to_deg(axis),
+        shift_mm: (refined.closest_point(&centroid) - surface.start_axis.closest_point(&centroid)).norm(),
+        kept_start,
+        section_count: surface.section_heights_mm.len(),
+        skin_vertex_count: surface.skins.iter().filter(|s| s.is_some()).count(),
+        timings: RefineTimings {
+            prepare_ms,
+            search_ms: search_started.elapsed().as_secs_f64() * 1e3,
+            total_ms: started.elapsed().as_secs_f64() * 1e3,
+        },
+    };
+    Ok(Refinement { axis: refined, report, pareto_front, pareto_chosen })
+}
+
+/// `axis` pointing the same way (base to rim) as `reference`.
+fn orient_like(axis: &Axis, reference: &Axis) -> Axis {
+    if axis.direction.dot(&reference.direction) < 0.0 { axis.flipped() } else { *axis }
+}
+
+/// Minimises and keeps the start when the search does not beat it:
+/// `(parameters, start cost, cost, iterations, kept start)`.
+fn run_guarded<O: Objective>(
+    objective: &O,
+    start: AxisParameters,
+    settings: &SearchSettings,
+) -> Result<(AxisParameters, f64, f64, u64, bool)> {
+    let start_cost = objective.value(&start);
+    let Minimum { parameters, value, iterations } = minimize(objective, start, settings)?;
+    if value < start_cost {
+        Ok((parameters, start_cost, value, iterations, false))
+    } else {
+        Ok((start, start_cost, start_cost, iterations, true))
+    }
+}
+
+/// The criterion to run, why, and the edge for the tangent criterion.
+pub(crate) fn choose_criterion(surface: &PreparedSurface, options: &RefineOptions) -> (Criterion, String, Option<Edge>) {
+    let detect = || {
+        [Edge::Rim, Edge::Base]
+            .into_iter()
+            .map(|edge| tangent::edge_evidence(surface, edge, EDGE_LEVEL_TOLERANCE_MM, options.vertical_section_count))
+            .filter(|e| e.level_fraction >= EDGE_LEVEL_FRACTION)
+            .min_by(|a, b| a.spread_mm.total_cmp(&b.spread_mm))
+    };
+    match options.criterion {
+        Criterion::Auto => match options.edge.map(|edge| (edge, None)).or_else(|| detect().map(|e| (e.edge, Some(e)))) {
+            Some((edge, evidence)) => (
+                Criterion::Tangent,
+                match evidence {
+                    Some(e) => format!(
+                        "a level {:?}: {:.0}% of vertical sections within {EDGE_LEVEL_TOLERANCE_MM} mm, spread {:.2} mm",
+                        e.edge,
+                        e.level_fraction * 100.0,
+                        e.spread_mm
+                    ),
+                    None => format!("{edge:?} given"),
+                },
+                Some(edge),
+            ),
+            None => (Criterion::Circles, "no level rim or base: horizontal circles".into(), None),
+        },
+        Criterion::Tangent => {
+            let edge = options.edge.or_else(|| detect().map(|e| e.edge)).unwrap_or(Edge::Rim);
+            (Criterion::Tangent, "asked for".into(), Some(edge))
+        }
+        other => (other, "asked for".into(), None),
+    }
+}
+
+/// A rim or base is level when this share of vertical sections has its extreme within
+/// [`EDGE_LEVEL_TOLERANCE_MM`] of the median extreme.
+const EDGE_LEVEL_FRACTION: f64 = 0.8;
+/// Height tolerance of the level test, millimetres.
+const EDGE_LEVEL_TOLERANCE_MM: f64 = 1.5;

@@ -64,22 +64,24 @@ impl RoughVoronoi {
 
     /// The fragment (seed index) owning surface point `p`.
     pub fn label(&self, p: &Point) -> u32 {
-        let distances: Vec<f64> = self.seeds.iter().map(|s| (p - s).norm()).collect();
-        let nearest = distances.iter().cloned().fold(f64::INFINITY, f64::min);
+        let nearest_squared = self.seeds.iter().map(|s| (p - s).norm_squared()).fold(f64::INFINITY, f64::min);
         // The roughness field is bounded by 1.5 * roughness: seeds farther than that beyond
         // the nearest cannot win, and skipping them keeps large diagrams fast.
-        let reach = nearest + 3.0 * self.roughness_mm;
+        let reach = nearest_squared.sqrt() + 3.0 * self.roughness_mm;
+        let reach_squared = reach * reach;
         let mut best = (f64::INFINITY, 0u32);
-        for (k, &d) in distances.iter().enumerate() {
-            if d > reach {
+        for (k, seed) in self.seeds.iter().enumerate() {
+            let squared = (p - seed).norm_squared();
+            if squared > reach_squared {
                 continue;
             }
             let rough: f64 = self.waves[k]
                 .iter()
                 .map(|w| w.amplitude_mm * (w.wave_vector.dot(&p.coords) + w.phase).sin())
                 .sum();
-            if d + rough < best.0 {
-                best = (d + rough, k as u32);
+            let distance = squared.sqrt() + rough;
+            if distance < best.0 {
+                best = (distance, k as u32);
             }
         }
         best.1

@@ -10,23 +10,28 @@
 //! Every fragment is a closed, watertight, outward-oriented triangle mesh with
 //! area-weighted vertex normals, and the same seed always gives the same bytes.
 
+pub mod colour;
 pub mod deform;
 pub mod fracture;
 pub mod motion;
 pub mod profile;
 pub mod revolve;
 pub mod truth;
+pub mod write;
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
 pub use deform::Deformation;
-pub use profile::{VesselProfile, VesselShape};
+pub use profile::{RimForm, VesselProfile, VesselShape};
 pub use truth::{GroundTruth, HardCase, RigidMotion, SherdPart, SurfaceKind, VesselTruth};
+pub use write::{read_truth, write_sherd};
 
+use crate::mesh::normals::{compute_vertex_normals, NormalWeighting};
 use crate::mesh::{Mesh, Point, Vector};
 use crate::orient::Axis;
+use colour::ClayColour;
 use fracture::{clean_mask, mid_surface_point, RoughVoronoi};
 use revolve::{build_shell, ParamGrid, Shell};
 
@@ -55,6 +60,8 @@ pub struct SherdOptions {
     /// Make one of the fragments orientation must refuse (overrides `part` and, for
     /// near-spherical pieces, `shape`).
     pub hard_case: Option<HardCase>,
+    /// Give the vertices fired-clay colours.
+    pub colours: bool,
 }
 
 impl Default for SherdOptions {
@@ -69,6 +76,7 @@ impl Default for SherdOptions {
             roughness_mm: 1.5,
             random_motion: true,
             hard_case: None,
+            colours: true,
         }
     }
 }
@@ -99,7 +107,7 @@ pub struct SynthSherd {
     pub truth: GroundTruth,
     /// Outer or inner skin, per vertex.
     pub vertex_kinds: Vec<SurfaceKind>,
-    /// Outer skin, inner skin, fracture or rim top, per face.
+    /// Outer skin, inner skin, fracture or rim (top or rounding), per face.
     pub face_kinds: Vec<SurfaceKind>,
 }
 
@@ -121,6 +129,8 @@ pub struct VesselOptions {
     /// Move each fragment by its own random rigid motion; otherwise they stay in the
     /// vessel frame and fit together.
     pub random_motion: bool,
+    /// Give the vertices fired-clay colours.
+    pub colours: bool,
 }
 
 impl Default for VesselOptions {
@@ -133,6 +143,7 @@ impl Default for VesselOptions {
             deformation_scale: 1.0,
             roughness_mm: 1.5,
             random_motion: false,
+            colours: true,
         }
     }
 }
@@ -180,17 +191,23 @@ pub fn synthetic_sherd(seed: u64, options: &SherdOptions) -> SynthSherd {
             continue;
         };
         let part = classify(&profile, &shell);
-        let noise_seed = rng.random::<u64>();
-        let motion_seed = rng.random::<u64>();
+        let surface = Surface {
+            noise_mm: options.noise_mm,
+            noise_seed: rng.random(),
+            motion_seed: options.random_motion.then(|| rng.random()),
+            colour: options.colours.then(|| ClayColour::random(&mut rng)),
+            hard_case: options.hard_case,
+            fragment_index: None,
+        };
         if part == wanted_part || attempt + 1 == MAX_ATTEMPTS {
-            return finish(seed, shell, &profile, &deformation, part, options.hard_case, options.noise_mm, noise_seed, options.random_motion.then_some(motion_seed));
+            return finish(seed, shell, &profile, &deformation, part, &surface);
         }
-        fallback.get_or_insert((shell, profile, deformation, part, noise_seed, motion_seed));
+        fallback.get_or_insert((shell, profile, deformation, part, surface));
     }
     // Only reached when no attempt gave the wanted part: the truth says what it is.
-    let (shell, profile, deformation, part, noise_seed, motion_seed) =
+    let (shell, profile, deformation, part, surface) =
         fallback.expect("some attempt yields a fragment: every plan contains its own seed");
-    finish(seed, shell, &profile, &deformation, part, options.hard_case, options.noise_mm, noise_seed, options.random_motion.then_some(motion_seed))
+    finish(seed, shell, &profile, &deformation, part, &surface)
 }
 
 /// A whole vessel broken into `options.fragment_count` fragments by a rough Voronoi
@@ -215,6 +232,7 @@ pub fn generate_vessel(seed: u64, options: &VesselOptions) -> SynthVessel {
     let (area, parameter_area) = surface_areas(&profile);
     let grid = ParamGrid::covering(None, [0.0, length], length, options.cell_size_mm.max(0.05), area / parameter_area);
     let labels = voronoi.label_grid(&grid, &profile);
+    let colour = options.colours.then(|| ClayColour::random(&mut rng));
     let fragment_seeds: Vec<(u64, u64)> = seed_params.iter().map(|_| (rng.random(), rng.random())).collect();
     let fragments = seed_params
         .par_iter()
@@ -227,7 +245,15 @@ pub fn generate_vessel(seed: u64, options: &VesselOptions) -> SynthVessel {
             let shell = build_shell(&grid, &mask, &profile, &deformation);
             let part = classify(&profile, &shell);
             let (noise_seed, motion_seed) = fragment_seeds[k];
-            Some(finish(seed, shell, &profile, &deformation, part, None, options.noise_mm, noise_seed, options.random_motion.then_some(motion_seed)))
+            let surface = Surface {
+                noise_mm: options.noise_mm,
+                noise_seed,
+                motion_seed: options.random_motion.then_some(motion_seed),
+                colour: colour.clone(),
+                hard_case: None,
+                fragment_index: Some(k),
+            };
+            Some(finish(seed, shell, &profile, &deformation, part, &surface))
         })
         .collect();
     SynthVessel {
@@ -252,12 +278,16 @@ struct FragmentPlan {
     seeds: Vec<Point>,
     theta: f64,
     s_mm: f64,
+    /// The neighbours' angular and arc-length extent: the fragment lies inside.
+    theta_extent: [f64; 2],
+    s_extent: [f64; 2],
 }
 
 /// Seeds whose Voronoi cell is a fragment of `part`: the fragment's seed in the middle of
 /// the wanted arc-length band, and a ring of 6-9 neighbours at twice the wanted half
 /// extents, so that the bisectors fall on the wanted outline. Neighbours that would lie
-/// beyond the rim are left out when the fragment should reach the rim.
+/// beyond the rim are left out when the fragment should reach the rim, and seeds along
+/// the rest of the rim take their place.
 fn plan_fragment(profile: &VesselProfile, part: SherdPart, options: &SherdOptions, rng: &mut impl Rng) -> Option<FragmentPlan> {
     let length = profile.length_mm();
     let edge = profile.base_edge_s_mm();
@@ -301,6 +331,7 @@ fn plan_fragment(profile: &VesselProfile, part: SherdPart, options: &SherdOption
     let half_width = 0.5 * sector_rad * centre_radius;
     let half_height = 0.5 * (s_high - s_low);
     let mut seeds = vec![mid_surface_point(profile, 0.0, centre_s)];
+    let (mut theta_extent, mut s_extent) = ([0.0f64, 0.0f64], [centre_s, if open_top { length } else { centre_s }]);
     let neighbour_count = rng.random_range(6..=9);
     for k in 0..neighbour_count {
         let jitter = uniform(rng, -0.3, 0.3) * std::f64::consts::PI / neighbour_count as f64;
@@ -311,9 +342,24 @@ fn plan_fragment(profile: &VesselProfile, part: SherdPart, options: &SherdOption
         if open_top && s >= length {
             continue;
         }
+        theta_extent = [theta_extent[0].min(theta), theta_extent[1].max(theta)];
+        s_extent = [s_extent[0].min(s), s_extent[1].max(s)];
         seeds.push(mid_surface_point(profile, theta, s));
     }
-    Some(FragmentPlan { seeds, theta: 0.0, s_mm: centre_s })
+    if open_top {
+        // With no neighbours above, nothing would stop the cell creeping round the rim
+        // (on a jar's narrow neck the far side of the rim is nearer to the fragment's
+        // seed than to its lateral neighbours): the rest of the rim is broken too, into
+        // pieces about as wide as this one.
+        let step = sector_rad.max(10f64.to_radians());
+        let mut theta = 1.5 * sector_rad.max(step);
+        while theta < std::f64::consts::PI {
+            seeds.push(mid_surface_point(profile, theta, length));
+            seeds.push(mid_surface_point(profile, -theta, length));
+            theta += step;
+        }
+    }
+    Some(FragmentPlan { seeds, theta: 0.0, s_mm: centre_s, theta_extent, s_extent })
 }
 
 /// The fragment of seed 0 of `voronoi`: found on a coarse grid of the whole vessel, then
@@ -322,11 +368,22 @@ fn mesh_planned_fragment(profile: &VesselProfile, deformation: &Deformation, vor
     let length = profile.length_mm();
     let (area, parameter_area) = surface_areas(profile);
     let coarse_cell = (area / 100_000.0).sqrt().max(1.0);
-    let coarse = ParamGrid::covering(None, [0.0, length], length, coarse_cell, area / parameter_area);
-    let mut mask: Vec<bool> = voronoi.label_grid(&coarse, profile).iter().map(|&l| l == 0).collect();
-    if !clean_mask(&coarse, &mut mask, cell_at(&coarse, plan.theta, plan.s_mm)) {
-        return None;
+    // The fragment lies within its neighbours' ring; the whole vessel is the fallback
+    // when the rough break lines carry it out of the ring's window.
+    let windowed = ParamGrid::covering(Some(plan.theta_extent), plan.s_extent, length, coarse_cell, area / parameter_area);
+    let whole = ParamGrid::covering(None, [0.0, length], length, coarse_cell, area / parameter_area);
+    let mut found = None;
+    for coarse in [windowed, whole] {
+        let mut mask: Vec<bool> = voronoi.label_grid(&coarse, profile).iter().map(|&l| l == 0).collect();
+        if !clean_mask(&coarse, &mut mask, cell_at(&coarse, plan.theta, plan.s_mm)) {
+            return None;
+        }
+        if !touches_window_border(&coarse, &mask) {
+            found = Some((coarse, mask));
+            break;
+        }
     }
+    let (coarse, mask) = found?;
     let extent = CellSetExtent::measure(&coarse, &mask, profile);
 
     // Faces ~ 4 per cell + 2 per boundary edge: 4 A / h^2 + 2 P / h = target, solved for 1/h.
@@ -343,13 +400,19 @@ fn mesh_planned_fragment(profile: &VesselProfile, deformation: &Deformation, vor
     if !clean_mask(&fine, &mut mask, cell_at(&fine, plan.theta, plan.s_mm)) {
         return None;
     }
-    if !fine.periodic {
-        let touches_side = (0..fine.rows).any(|row| mask[row * fine.columns] || mask[row * fine.columns + fine.columns - 1]);
-        if touches_side {
-            return None;
-        }
+    if touches_window_border(&fine, &mask) {
+        return None;
     }
     Some(build_shell(&fine, &mask, profile, deformation))
+}
+
+/// True when a cell of `mask` lies on a side of the window that is not the vessel's own
+/// edge (base centre or rim): the fragment may continue beyond the window.
+fn touches_window_border(grid: &ParamGrid, mask: &[bool]) -> bool {
+    let sides = !grid.periodic && (0..grid.rows).any(|row| mask[row * grid.columns] || mask[row * grid.columns + grid.columns - 1]);
+    let bottom = !grid.pole && grid.s0 > 0.0 && mask[..grid.columns].iter().any(|&m| m);
+    let top = !grid.rim && mask[(grid.rows - 1) * grid.columns..].iter().any(|&m| m);
+    sides || bottom || top
 }
 
 /// Area, outline and angular and arc-length extent of a set of cells.
@@ -462,27 +525,31 @@ fn vessel_truth(profile: &VesselProfile, deformation: &Deformation) -> VesselTru
         base_radius_mm: profile.base_radius_mm(),
         height_mm: profile.height_mm(),
         wall_thickness_mm: profile.wall_thickness_mm,
+        rim_form: profile.rim_form,
         deformation: deformation.clone(),
     }
 }
 
-/// Noise, motion, normals and truth for a shell.
-#[allow(clippy::too_many_arguments)]
-fn finish(
-    seed: u64,
-    shell: Shell,
-    profile: &VesselProfile,
-    deformation: &Deformation,
-    part: SherdPart,
-    hard_case: Option<HardCase>,
+/// What happens to a shell after it is built: colour, noise, motion.
+struct Surface {
     noise_mm: f64,
     noise_seed: u64,
+    /// `None`: stay in the vessel frame.
     motion_seed: Option<u64>,
-) -> SynthSherd {
+    colour: Option<ClayColour>,
+    hard_case: Option<HardCase>,
+    fragment_index: Option<usize>,
+}
+
+/// Colours, noise, motion, normals and truth for a shell.
+fn finish(seed: u64, shell: Shell, profile: &VesselProfile, deformation: &Deformation, part: SherdPart, surface: &Surface) -> SynthSherd {
     let Shell { positions, triangles, vertex_kinds, face_kinds, .. } = shell;
     let mut mesh = Mesh::new(positions, triangles);
-    motion::add_noise(&mut mesh.positions, noise_mm, noise_seed);
-    let isometry = match motion_seed {
+    if let Some(colour) = &surface.colour {
+        mesh.colors = Some(mesh.positions.par_iter().zip(&vertex_kinds).map(|(p, kind)| colour.at(p, *kind)).collect());
+    }
+    motion::add_noise(&mut mesh.positions, surface.noise_mm, surface.noise_seed);
+    let isometry = match surface.motion_seed {
         Some(motion_seed) => {
             let centroid = mesh.centroid().unwrap_or_else(Point::origin);
             motion::random_motion(&mut ChaCha8Rng::seed_from_u64(motion_seed), &centroid, 30.0)
@@ -490,8 +557,15 @@ fn finish(
         None => nalgebra::Isometry3::identity(),
     };
     mesh.transform(&isometry);
-    mesh.normals = Some(motion::area_weighted_normals(&mesh));
+    mesh.normals = Some(compute_vertex_normals(&mesh, NormalWeighting::Area));
     let axis = Axis::new(isometry * Point::origin(), isometry * Vector::z());
+    let rim_points: Vec<Point> = mesh
+        .triangles
+        .iter()
+        .zip(&face_kinds)
+        .filter(|(_, kind)| **kind == SurfaceKind::Rim)
+        .flat_map(|(triangle, _)| triangle.map(|v| mesh.positions[v as usize]))
+        .collect();
     let heights = mesh.positions.iter().map(|p| axis.height_of(p));
     let (low, high) = heights.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), h| (lo.min(h), hi.max(h)));
     let truth = GroundTruth {
@@ -499,12 +573,14 @@ fn finish(
         rim_radius_mm: matches!(part, SherdPart::Rim | SherdPart::RimToBase).then(|| profile.rim_radius_mm()),
         base_radius_mm: matches!(part, SherdPart::Base | SherdPart::RimToBase).then(|| profile.base_radius_mm()),
         sector_angle_deg: truth::sector_angle_deg(&mesh.positions, &axis),
+        rim_sector_angle_deg: (!rim_points.is_empty()).then(|| truth::sector_angle_deg(&rim_points, &axis)),
         height_mm: (high - low).max(0.0),
         profile: profile.skin_polyline(1.0, PROFILE_STEP_MM),
         inner_profile: profile.skin_polyline(-1.0, PROFILE_STEP_MM),
         part,
-        hard_case,
-        noise_mm,
+        hard_case: surface.hard_case,
+        noise_mm: surface.noise_mm,
+        fragment_index: surface.fragment_index,
         deformation_bound_mm: deformation.bound_mm(profile.max_radius_mm()),
         vessel: vessel_truth(profile, deformation),
         motion: RigidMotion::from_isometry(&isometry),

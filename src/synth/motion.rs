@@ -1,5 +1,5 @@
 //! From the vessel frame to a scan: measurement noise on every vertex, a random rigid
-//! motion (a scanner puts the sherd anywhere, in any attitude), and vertex normals.
+//! motion (a scanner puts the sherd anywhere, in any attitude).
 
 use nalgebra::{Isometry3, Quaternion, Translation3, UnitQuaternion};
 use rand::{Rng, SeedableRng};
@@ -7,7 +7,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
 use rayon::prelude::*;
 
-use crate::mesh::{Mesh, Point, Vector};
+use crate::mesh::{Point, Vector};
 
 /// Vertices per independently seeded noise stream: the noise is the same whatever the
 /// number of threads.
@@ -46,21 +46,4 @@ pub fn random_motion(rng: &mut impl Rng, centroid: &Point, spread_mm: f64) -> Is
     );
     let translation = target - rotation * centroid.coords;
     Isometry3::from_parts(Translation3::from(translation), rotation)
-}
-
-/// Area-weighted vertex normals: each face adds its unnormalised normal (twice its area)
-/// to its three corners.
-pub fn area_weighted_normals(mesh: &Mesh) -> Vec<Vector> {
-    let mut normals = vec![Vector::zeros(); mesh.positions.len()];
-    for face in 0..mesh.triangles.len() {
-        let n = mesh.face_normal_scaled(face);
-        for &v in &mesh.triangles[face] {
-            normals[v as usize] += n;
-        }
-    }
-    normals.par_iter_mut().for_each(|n| {
-        let length = n.norm();
-        *n = if length > 0.0 { *n / length } else { Vector::z() };
-    });
-    normals
 }

@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::deform::Deformation;
-use super::profile::VesselShape;
+use super::profile::{RimForm, VesselShape};
 use crate::mesh::Point;
 use crate::orient::{Axis, AxisRecord};
 
@@ -45,11 +45,7 @@ impl std::str::FromStr for SherdPart {
     type Err = crate::Error;
 
     fn from_str(text: &str) -> crate::Result<Self> {
-        let wanted = text.trim().to_ascii_lowercase().replace('-', "_");
-        SherdPart::ALL
-            .into_iter()
-            .find(|part| part.name() == wanted)
-            .ok_or_else(|| crate::Error::InvalidArgument(format!("unknown sherd part {text:?}: expected rim, body, base, rim_to_base or flat")))
+        parse_name(text, &SherdPart::ALL, SherdPart::name, "sherd part")
     }
 }
 
@@ -65,6 +61,38 @@ pub enum HardCase {
     Tiny,
 }
 
+impl HardCase {
+    /// Every hard case, in a fixed order.
+    pub const ALL: [HardCase; 3] = [HardCase::FlatBase, HardCase::NearSpherical, HardCase::Tiny];
+
+    /// The lower-case name used on the command line and in JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            HardCase::FlatBase => "flat_base",
+            HardCase::NearSpherical => "near_spherical",
+            HardCase::Tiny => "tiny",
+        }
+    }
+}
+
+impl std::str::FromStr for HardCase {
+    type Err = crate::Error;
+
+    fn from_str(text: &str) -> crate::Result<Self> {
+        parse_name(text, &HardCase::ALL, HardCase::name, "hard case")
+    }
+}
+
+/// The value of `all` whose `name` is `text` (case and `-`/`_` ignored), or an error
+/// listing the names.
+pub(crate) fn parse_name<T: Copy>(text: &str, all: &[T], name: fn(T) -> &'static str, what: &str) -> crate::Result<T> {
+    let wanted = text.trim().to_ascii_lowercase().replace('-', "_");
+    all.iter().copied().find(|&value| name(value) == wanted).ok_or_else(|| {
+        let names: Vec<&str> = all.iter().map(|&value| name(value)).collect();
+        crate::Error::InvalidArgument(format!("unknown {what} {text:?}: expected one of {}", names.join(", ")))
+    })
+}
+
 /// What a vertex or face of a synthetic sherd lies on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -75,7 +103,7 @@ pub enum SurfaceKind {
     Inner,
     /// A break face across the wall.
     Fracture,
-    /// The top of the rim, across the wall.
+    /// The rim: its flat top across the wall, or its rounding.
     Rim,
 }
 
@@ -121,6 +149,8 @@ pub struct VesselTruth {
     pub height_mm: f64,
     /// Wall thickness, mm.
     pub wall_thickness_mm: f64,
+    /// How the wall ends at the rim.
+    pub rim_form: RimForm,
     /// The deformation applied (ovality, rim tilt, wobble).
     pub deformation: Deformation,
 }
@@ -141,6 +171,9 @@ pub struct GroundTruth {
     /// Angle of the circumference the fragment's points span about the axis, degrees
     /// (360 when it surrounds the axis).
     pub sector_angle_deg: f64,
+    /// Angle of the rim the fragment preserves (the sector its rim faces span), degrees,
+    /// when it has rim: what "12 % of the rim" in a publication measures.
+    pub rim_sector_angle_deg: Option<f64>,
     /// Extent of the fragment along the axis, mm.
     pub height_mm: f64,
     /// The vessel's outer profile `[r, z]` (oriented frame, mm) from the base centre to
@@ -160,8 +193,10 @@ pub struct GroundTruth {
     pub vessel: VesselTruth,
     /// Vessel frame to scan frame.
     pub motion: RigidMotion,
-    /// The seed the sherd was generated from.
+    /// The seed the sherd (or its vessel) was generated from.
     pub seed: u64,
+    /// The fragment's index among its vessel's fragments ([`super::generate_vessel`]).
+    pub fragment_index: Option<usize>,
 }
 
 mod axis_as_record {

@@ -30,7 +30,8 @@ static_libs="-Wl,-Bstatic $(pkg-config --libs sherd) -Wl,-Bdynamic $(pkg-config 
 
 sanitize=()
 if command -v valgrind >/dev/null 2>&1; then
-  run() { valgrind --quiet --error-exitcode=99 --leak-check=full --show-leak-kinds=definite,indirect,possible \
+  run() { valgrind --quiet --error-exitcode=99 --suppressions="$root/tests/c/valgrind.supp" \
+            --leak-check=full --show-leak-kinds=definite,indirect,possible \
             --errors-for-leak-kinds=definite,indirect,possible "$@"; }
 else
   echo "valgrind not found: using AddressSanitizer and LeakSanitizer"

@@ -3,8 +3,9 @@
  * its status code and a message naming the problem, never a crash; the valgrind run
  * checks that nothing is written where it should not be.
  *
- * Not tested because it cannot be detected: using or freeing a handle after
- * sherd_*_free (undefined behaviour, as with free()). */
+ * Not tested because it cannot be detected: using or freeing a handle (a mesh, a buffer,
+ * option builders) after its sherd_*_free (undefined behaviour, as with free(); the
+ * header says so on each _free function). */
 #include "check.h"
 
 static const double positions[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
@@ -201,6 +202,99 @@ static void test_axis_struct(void) {
     CHECK_MESSAGE("reference_point");
 }
 
+static void test_pipeline_misuse(void) {
+    SherdMesh *mesh = make_mesh(), *out = NULL;
+    SherdAxis axis = z_axis(), short_axis = z_axis();
+    SherdOrientReport report;
+    SherdOrientOptions *orient_options = NULL;
+    SherdManualOptions *manual_options = NULL;
+    SherdRepairOptions *repair_options = NULL;
+    SherdBuffer *buffer = NULL;
+    const double points[9] = {1, 0, 0, 0, 1, 0, -1, 0, 0};
+    double nan_points[9] = {1, 0, 0, 0, 1, 0, -1, 0, 0};
+
+    memset(&report, 0, sizeof report);
+    report.size = sizeof report;
+
+    /* Synthetic sherds: an out-of-range kind, bad noise, NULL outputs. */
+    CHECK_STATUS(sherd_synthetic_sherd(1, 99u, 1000, 0.0, &out, NULL, NULL), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("`kind` 99 is not a SHERD_SYNTH_KIND_* value");
+    CHECK_STATUS(sherd_synthetic_sherd(1, SHERD_SYNTH_KIND_RIM, 1000, NAN, &out, NULL, NULL),
+                 SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_synthetic_sherd(1, SHERD_SYNTH_KIND_RIM, 1000, -1.0, &out, NULL, NULL),
+                 SHERD_STATUS_INVALID_ARGUMENT);
+    NULL_ARGUMENT(sherd_synthetic_sherd(1, SHERD_SYNTH_KIND_RIM, 1000, 0.0, NULL, NULL, NULL), "out_mesh");
+    short_axis.size = 8;
+    CHECK_STATUS(sherd_synthetic_sherd(1, SHERD_SYNTH_KIND_RIM, 1000, 0.0, &out, &short_axis, NULL),
+                 SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("out_true_axis->size");
+    CHECK(out == NULL);
+
+    /* Option builders: NULL handles, values out of range. */
+    NULL_ARGUMENT(sherd_orient_options_new(NULL), "out_options");
+    NULL_ARGUMENT(sherd_manual_options_new(NULL), "out_options");
+    NULL_ARGUMENT(sherd_repair_options_new(NULL), "out_options");
+    NULL_ARGUMENT(sherd_orient_options_set_target_vertex_count(NULL, 10), "options");
+    NULL_ARGUMENT(sherd_orient_options_set_smoothing_iterations(NULL, 1), "options");
+    NULL_ARGUMENT(sherd_orient_options_set_opposite_normal_confidence(NULL, 0.9), "options");
+    NULL_ARGUMENT(sherd_manual_options_set_keep_fraction(NULL, 0.5), "options");
+    NULL_ARGUMENT(sherd_manual_options_set_max_pick_distance_mm(NULL, 1.0), "options");
+    NULL_ARGUMENT(sherd_repair_options_set_merge_tolerance_mm(NULL, 0.1), "options");
+    NULL_ARGUMENT(sherd_repair_options_set_keep_largest_component(NULL, true), "options");
+    CHECK_OK(sherd_orient_options_new(&orient_options));
+    CHECK_OK(sherd_manual_options_new(&manual_options));
+    CHECK_OK(sherd_repair_options_new(&repair_options));
+    CHECK_STATUS(sherd_orient_options_set_target_vertex_count(orient_options, 0), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_orient_options_set_opposite_normal_confidence(orient_options, 1.0),
+                 SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_orient_options_set_opposite_normal_confidence(orient_options, NAN),
+                 SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_OK(sherd_orient_options_set_opposite_normal_confidence(orient_options, 0.0));
+    CHECK_STATUS(sherd_manual_options_set_keep_fraction(manual_options, 0.0), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_manual_options_set_keep_fraction(manual_options, 1.5), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_manual_options_set_max_pick_distance_mm(manual_options, -2.0), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_repair_options_set_merge_tolerance_mm(repair_options, INFINITY), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("finite and positive");
+
+    /* Orientation: NULL for each pointer, sizes not set, NaN points. */
+    NULL_ARGUMENT(sherd_orient_automatic(NULL, NULL, &axis, NULL, NULL), "mesh");
+    NULL_ARGUMENT(sherd_orient_automatic(mesh, NULL, NULL, NULL, NULL), "out_axis");
+    short_axis.size = 0;
+    CHECK_STATUS(sherd_orient_automatic(mesh, orient_options, &short_axis, NULL, NULL), SHERD_STATUS_INVALID_ARGUMENT);
+    report.size = 1;
+    CHECK_STATUS(sherd_orient_automatic(mesh, orient_options, &axis, &report, NULL), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("out_report->size");
+    report.size = sizeof report;
+    NULL_ARGUMENT(sherd_orient_from_three_points(NULL, points, NULL, &axis, NULL, NULL), "mesh");
+    NULL_ARGUMENT(sherd_orient_from_three_points(mesh, NULL, NULL, &axis, NULL, NULL), "points");
+    NULL_ARGUMENT(sherd_orient_from_three_points(mesh, points, manual_options, NULL, NULL, NULL), "out_axis");
+    nan_points[4] = NAN;
+    CHECK_STATUS(sherd_orient_from_three_points(mesh, nan_points, NULL, &axis, NULL, NULL),
+                 SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("point 2");
+    /* Points far from the mesh are refused by the orientation layer, with their number. */
+    {
+        const double far[9] = {100, 0, 0, 0, 100, 0, -100, 0, 0};
+        CHECK_STATUS(sherd_orient_from_three_points(mesh, far, NULL, &axis, NULL, NULL), SHERD_STATUS_INVALID_ARGUMENT);
+        CHECK_MESSAGE("point 1");
+    }
+
+    /* Repair and decimation. */
+    NULL_ARGUMENT(sherd_mesh_repair(NULL, repair_options, &buffer), "mesh");
+    NULL_ARGUMENT(sherd_mesh_decimate(NULL, 2, &out), "mesh");
+    NULL_ARGUMENT(sherd_mesh_decimate(mesh, 2, NULL), "out_mesh");
+    CHECK_STATUS(sherd_mesh_decimate(mesh, 0, &out), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK(out == NULL && buffer == NULL);
+
+    sherd_orient_options_free(orient_options);
+    sherd_manual_options_free(manual_options);
+    sherd_repair_options_free(repair_options);
+    sherd_orient_options_free(NULL);
+    sherd_manual_options_free(NULL);
+    sherd_repair_options_free(NULL);
+    sherd_mesh_free(mesh);
+}
+
 static void test_messages_survive_success(void) {
     SherdMesh *mesh = NULL;
     CHECK_STATUS(sherd_mesh_from_arrays(NULL, 4, triangles, 4, &mesh), SHERD_STATUS_NULL_POINTER);
@@ -215,6 +309,7 @@ int main(void) {
     test_invalid_attributes();
     test_short_buffers();
     test_axis_struct();
+    test_pipeline_misuse();
     test_messages_survive_success();
     printf("test_misuse: ok\n");
     return 0;

@@ -89,12 +89,32 @@ void test_errors() {
     expect_error([&] { mesh.oriented_transform(axis); }, SHERD_STATUS_INVALID_ARGUMENT, "axis->size");
 }
 
+void test_files() {
+    sherd::Mesh mesh = sherd::Mesh::from_arrays(positions, triangles);
+    mesh.write_ply("wrapper.ply", false);
+    sherd::Mesh back = sherd::Mesh::read("wrapper.ply");
+    CHECK(back.triangles() == triangles);
+    CHECK(back.positions() == positions);  // small integers survive the float format exactly
+
+    // The tetrahedron about the axis x = y = 1: the cut at angle 0 gives a profile.
+    SherdAxis axis = sherd::make_axis({1, 1, 0}, {0, 0, 1});
+    sherd::export_oriented_ply(mesh, axis, "wrapper-oriented.ply");
+    CHECK(sherd::Mesh::read("wrapper-oriented.ply").vertex_count() == 4);
+    const std::string csv = sherd::profile_csv(mesh, axis);
+    CHECK(csv.rfind("curve,index,r_mm,z_mm,closed\n", 0) == 0);
+    CHECK(csv.size() > 40);
+    std::remove("wrapper.ply");
+    std::remove("wrapper-oriented.ply");
+    expect_error([] { sherd::Mesh::read("no/such/scan.ply"); }, SHERD_STATUS_IO, "no/such/scan.ply");
+}
+
 }  // namespace
 
 int main() {
     test_round_trip_and_ownership();
     test_transform();
     test_errors();
+    test_files();
     std::printf("test_wrapper: ok (sherd %s)\n", sherd::version().c_str());
     return 0;
 }

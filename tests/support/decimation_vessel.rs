@@ -47,25 +47,3 @@ pub fn noisy_vessel(faces: usize, noise_mm: f64, seed: u64) -> Mesh {
     }
     Mesh { positions, triangles, normals: Some(normals), colors: Some(colors), ..Default::default() }
 }
-
-/// A closed torus (genus one, Euler characteristic 0), for topology checks.
-pub fn torus(rings: usize, segments: usize) -> Mesh {
-    let mut positions = Vec::new();
-    for ring in 0..rings {
-        let u = std::f64::consts::TAU * ring as f64 / rings as f64;
-        for segment in 0..segments {
-            let v = std::f64::consts::TAU * segment as f64 / segments as f64;
-            let radius = 30.0 + 10.0 * v.cos();
-            positions.push(Point::new(radius * u.cos(), radius * u.sin(), 10.0 * v.sin()));
-        }
-    }
-    let index = |ring: usize, segment: usize| ((ring % rings) * segments + segment % segments) as u32;
-    let mut triangles = Vec::new();
-    for ring in 0..rings {
-        for segment in 0..segments {
-            let [a, b, c, d] = [index(ring, segment), index(ring + 1, segment), index(ring + 1, segment + 1), index(ring, segment + 1)];
-            triangles.extend([[a, b, c], [a, c, d]]);
-        }
-    }
-    Mesh::new(positions, triangles)
-}

@@ -126,21 +126,24 @@ pub fn triangle_soup(mesh: &Mesh) -> Mesh {
     }
 }
 
-/// Writes `mesh` (positions and faces) as an ASCII PLY that MeshLab reads.
-/// Temporary: replaced by `sherd::mesh::io::write_ply` once the reader/writer is merged.
-pub fn write_ascii_ply(path: &Path, mesh: &Mesh) {
-    use std::fmt::Write as _;
-    let mut text = String::new();
-    writeln!(text, "ply\nformat ascii 1.0\nelement vertex {}", mesh.positions.len()).unwrap();
-    writeln!(text, "property double x\nproperty double y\nproperty double z").unwrap();
-    writeln!(text, "element face {}\nproperty list uchar int vertex_indices\nend_header", mesh.triangles.len()).unwrap();
-    for p in &mesh.positions {
-        writeln!(text, "{:.17e} {:.17e} {:.17e}", p.x, p.y, p.z).unwrap();
+/// The real scan `relative` (under `../shared/data`), or `None` with a printed SKIPPED
+/// message when the shared data folder is absent.
+pub fn shared_data_file(test: &str, relative: &str) -> Option<std::path::PathBuf> {
+    let path = repo_root().join("../shared/data").join(relative);
+    if path.is_file() {
+        Some(path)
+    } else {
+        eprintln!("SKIPPED {test}: {} is absent", path.display());
+        None
     }
-    for [a, b, c] in &mesh.triangles {
-        writeln!(text, "3 {a} {b} {c}").unwrap();
-    }
-    std::fs::write(path, text).unwrap();
+}
+
+/// Runs a Python snippet with `arguments` (as `sys.argv[1:]`) and returns its standard
+/// output; panics with its standard error when it fails.
+pub fn python_output(code: &str, arguments: &[&std::ffi::OsStr]) -> String {
+    let run = Command::new("python3").arg("-c").arg(code).args(arguments).output().expect("python3 runs");
+    assert!(run.status.success(), "python failed: {}", String::from_utf8_lossy(&run.stderr));
+    String::from_utf8(run.stdout).unwrap()
 }
 
 /// True when `python3 -c "import pymeshlab"` works. When it does not: panics if

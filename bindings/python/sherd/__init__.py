@@ -22,7 +22,9 @@ from .errors import (
     Status,
     last_error_message,
 )
+from .export import export_oriented_ply, export_profile_csv, most_informative_angle, profile_csv, profile_section
 from .mesh import Attribute, Mesh
+from .pipeline import Orientation, orient_automatic, orient_from_three_points, synthetic_sherd
 
 if lib.sherd_abi_version() != ABI_VERSION:
     raise ImportError(
@@ -34,5 +36,7 @@ __version__ = lib.sherd_version().decode()
 __all__ = [
     "Attribute", "Axis", "BufferTooSmallError", "DegenerateGeometryError", "InvalidArgumentError", "Mesh",
     "NeedsManualOrientationError", "NotAvailableError", "NotConvergedError", "NullPointerError", "PanicError",
-    "ParseError", "SherdError", "SherdIOError", "Status", "last_error_message", "oriented_transform",
+    "ParseError", "SherdError", "SherdIOError", "Status", "export_oriented_ply", "export_profile_csv",
+    "last_error_message", "most_informative_angle", "orient_automatic", "orient_from_three_points", "Orientation",
+    "oriented_transform", "profile_csv", "profile_section", "synthetic_sherd",
 ]

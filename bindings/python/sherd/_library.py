@@ -105,3 +105,61 @@ _declare("sherd_mesh_copy_quality", Status, SherdMesh_p, c_float_p, ctypes.c_siz
 
 _declare("sherd_axis_oriented_transform", Status, ctypes.POINTER(SherdAxis), c_double_p, c_double_p)
 _declare("sherd_mesh_oriented_transform", Status, SherdMesh_p, ctypes.POINTER(SherdAxis), c_double_p)
+
+
+
+class SherdBuffer(ctypes.Structure):
+    """Opaque handle."""
+
+
+SherdBuffer_p = ctypes.POINTER(SherdBuffer)
+SherdAxis_p = ctypes.POINTER(SherdAxis)
+
+_declare("sherd_buffer_contents", Status, SherdBuffer_p, ctypes.POINTER(ctypes.c_void_p), c_size_t_p)
+_declare("sherd_buffer_free", None, SherdBuffer_p)
+
+_declare("sherd_mesh_read", Status, ctypes.c_char_p, ctypes.POINTER(SherdMesh_p))
+_declare("sherd_mesh_write_ply", Status, SherdMesh_p, ctypes.c_char_p, ctypes.c_bool)
+
+_declare("sherd_export_oriented_ply", Status, SherdMesh_p, SherdAxis_p, ctypes.c_char_p, ctypes.c_bool)
+_declare("sherd_export_profile_csv", Status, SherdMesh_p, SherdAxis_p, ctypes.c_double, ctypes.c_char_p)
+_declare("sherd_profile_csv", Status, SherdMesh_p, SherdAxis_p, ctypes.c_double, ctypes.POINTER(SherdBuffer_p))
+_declare("sherd_profile_most_informative_angle", Status, SherdMesh_p, SherdAxis_p, c_double_p)
+
+
+class SherdOptions(ctypes.Structure):
+    """Opaque handle (any option builder)."""
+
+
+class SherdOrientReport(ctypes.Structure):
+    _fields_ = [
+        ("size", ctypes.c_size_t),
+        ("oriented", ctypes.c_bool),
+        ("angle_uncertainty_deg", ctypes.c_double),
+        ("position_uncertainty_mm", ctypes.c_double),
+        ("kept_vertex_count", ctypes.c_size_t),
+    ]
+
+
+SherdOptions_p = ctypes.POINTER(SherdOptions)
+
+_declare("sherd_mesh_repair", Status, SherdMesh_p, SherdOptions_p, ctypes.POINTER(SherdBuffer_p))
+_declare("sherd_mesh_decimate", Status, SherdMesh_p, ctypes.c_size_t, ctypes.POINTER(SherdMesh_p))
+_declare("sherd_synthetic_sherd", Status, ctypes.c_uint64, ctypes.c_uint32, ctypes.c_size_t, ctypes.c_double,
+         ctypes.POINTER(SherdMesh_p), SherdAxis_p, ctypes.POINTER(SherdBuffer_p))
+
+for _builder in ("repair", "orient", "manual"):
+    _declare(f"sherd_{_builder}_options_new", Status, ctypes.POINTER(SherdOptions_p))
+    _declare(f"sherd_{_builder}_options_free", None, SherdOptions_p)
+_declare("sherd_repair_options_set_merge_tolerance_mm", Status, SherdOptions_p, ctypes.c_double)
+_declare("sherd_repair_options_set_keep_largest_component", Status, SherdOptions_p, ctypes.c_bool)
+_declare("sherd_orient_options_set_target_vertex_count", Status, SherdOptions_p, ctypes.c_size_t)
+_declare("sherd_orient_options_set_smoothing_iterations", Status, SherdOptions_p, ctypes.c_size_t)
+_declare("sherd_orient_options_set_opposite_normal_confidence", Status, SherdOptions_p, ctypes.c_double)
+_declare("sherd_manual_options_set_keep_fraction", Status, SherdOptions_p, ctypes.c_double)
+_declare("sherd_manual_options_set_max_pick_distance_mm", Status, SherdOptions_p, ctypes.c_double)
+
+_declare("sherd_orient_automatic", Status, SherdMesh_p, SherdOptions_p, SherdAxis_p,
+         ctypes.POINTER(SherdOrientReport), ctypes.POINTER(SherdBuffer_p))
+_declare("sherd_orient_from_three_points", Status, SherdMesh_p, c_double_p, SherdOptions_p, SherdAxis_p,
+         ctypes.POINTER(SherdOrientReport), ctypes.POINTER(SherdBuffer_p))

@@ -3,12 +3,14 @@ MeshLab's vertex and face matrices) and copied back out as numpy arrays."""
 
 import ctypes
 import enum
+import os
 
 import numpy as np
 
 from . import _library as c
 from .axis import as_pointer
 from .errors import InvalidArgumentError, Status, check
+from .options import Options, take_json
 
 
 class Attribute(enum.IntFlag):
@@ -190,3 +192,32 @@ class Mesh:
         check(c.lib.sherd_mesh_oriented_transform(self.handle, ctypes.byref(c_axis),
                                                   as_pointer(matrix, ctypes.c_double)))
         return matrix
+
+    @classmethod
+    def read(cls, path):
+        """Reads a scan (PLY, OBJ with MTL and texture, STL, XYZ, PTS; by extension)."""
+        handle = c.SherdMesh_p()
+        check(c.lib.sherd_mesh_read(os.fsencode(path), ctypes.byref(handle)))
+        return cls(handle)
+
+    def write_ply(self, path, binary=True):
+        """Writes the mesh as PLY (atomically)."""
+        check(c.lib.sherd_mesh_write_ply(self.handle, os.fsencode(path), bool(binary)))
+
+    def repair(self, *, merge_tolerance_mm=None, keep_largest_component=None):
+        """Repairs in place; returns the report (a dict of what changed)."""
+        setters = {
+            "merge_tolerance_mm": ("sherd_repair_options_set_merge_tolerance_mm", float),
+            "keep_largest_component": ("sherd_repair_options_set_keep_largest_component", bool),
+        }
+        values = dict(merge_tolerance_mm=merge_tolerance_mm, keep_largest_component=keep_largest_component)
+        report = c.SherdBuffer_p()
+        with Options("repair", values, setters) as options:
+            check(c.lib.sherd_mesh_repair(self.handle, options, ctypes.byref(report)))
+        return take_json(report)
+
+    def decimate(self, target_faces):
+        """A decimated copy with about ``target_faces`` triangles."""
+        handle = c.SherdMesh_p()
+        check(c.lib.sherd_mesh_decimate(self.handle, int(target_faces), ctypes.byref(handle)))
+        return Mesh(handle)

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use serde::Serialize;
 use sherd::Result;
 use sherd::mesh::io::{ReadReport, UnitsGuess, guess_units, read_mesh_with_report};
+use sherd::mesh::repair::{RepairOptions, RepairReport, repair};
 
 /// Arguments of `sherd info`.
 #[derive(clap::Args)]
@@ -14,6 +15,12 @@ pub struct InfoArgs {
     /// Print one JSON object on stdout instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Also merge vertices closer than this (file units) when repairing.
+    #[arg(long, value_name = "DISTANCE")]
+    pub merge_tolerance_mm: Option<f64>,
+    /// Keep only the largest connected component when repairing.
+    #[arg(long)]
+    pub keep_largest_component: bool,
 }
 
 /// Everything `sherd info` reports, in the JSON form scripts read.
@@ -32,7 +39,11 @@ struct Info {
     has_texture_coordinates: bool,
     /// `[width, height]` of the loaded texture image.
     texture_size: Option<[u32; 2]>,
+    /// Closed and 2-manifold after repair; `null` for a point cloud.
+    watertight: Option<bool>,
     read: ReadReport,
+    /// What repair (as every processing command applies it) changed and found.
+    repair: RepairReport,
 }
 
 #[derive(Serialize)]
@@ -44,6 +55,16 @@ struct BoundingBox {
 
 pub fn run(arguments: &InfoArgs) -> Result<()> {
     let (mesh, read) = read_mesh_with_report(&arguments.scan)?;
+    if let Some(tolerance) = arguments.merge_tolerance_mm {
+        if !(tolerance.is_finite() && tolerance >= 0.0) {
+            return Err(sherd::Error::InvalidArgument(format!("--merge-tolerance-mm must be a non-negative distance, not {tolerance}")));
+        }
+    }
+    let mut repaired = mesh.clone();
+    let repair_report = repair(
+        &mut repaired,
+        &RepairOptions { merge_tolerance_mm: arguments.merge_tolerance_mm, keep_largest_component: arguments.keep_largest_component },
+    );
     let bounding_box = mesh.bounding_box().map(|(low, high)| BoundingBox {
         min: low.coords.into(),
         max: high.coords.into(),
@@ -62,7 +83,9 @@ pub fn run(arguments: &InfoArgs) -> Result<()> {
         has_quality: mesh.quality.is_some(),
         has_texture_coordinates: mesh.corner_uvs.is_some(),
         texture_size: mesh.texture.as_ref().map(|t| [t.width, t.height]),
+        watertight: (!mesh.is_point_cloud()).then_some(repair_report.watertight),
         read,
+        repair: repair_report,
     };
     if arguments.json {
         println!("{}", serde_json::to_string_pretty(&info).expect("the report is plain data"));
@@ -97,6 +120,39 @@ fn text(info: &Info) -> String {
         None => "no".into(),
     };
     out += &format!("texture:    {texture}\n");
+    let repair = &info.repair;
+    if let Some(watertight) = info.watertight {
+        out += &format!(
+            "watertight: {} ({} boundary edges, {} non-manifold edges, {} non-manifold vertices, {} components)\n",
+            yes_no(watertight),
+            repair.boundary_edge_count,
+            repair.non_manifold_edge_count,
+            repair.non_manifold_vertex_count,
+            repair.component_face_counts.len()
+        );
+    }
+    let changes: Vec<String> = [
+        (repair.duplicate_vertices_merged, "duplicate vertices merged"),
+        (repair.close_vertices_merged, "close vertices merged"),
+        (repair.degenerate_faces_removed, "degenerate faces removed"),
+        (repair.duplicate_faces_removed, "duplicate faces removed"),
+        (repair.components_removed, "small components removed"),
+        (repair.unreferenced_vertices_removed, "unreferenced vertices removed"),
+    ]
+    .iter()
+    .filter(|(count, _)| *count > 0)
+    .map(|(count, what)| format!("{count} {what}"))
+    .collect();
+    if changes.is_empty() {
+        out += "repair:     nothing to repair\n";
+    } else {
+        out += &format!(
+            "repair:     {}; {} vertices, {} faces after\n",
+            changes.join(", "),
+            repair.vertices_after,
+            repair.faces_after
+        );
+    }
     if info.read.polygons_triangulated > 0 {
         out += &format!("polygons:   {} triangulated\n", info.read.polygons_triangulated);
     }

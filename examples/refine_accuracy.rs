@@ -1,0 +1,217 @@
+//! Accuracy of the refinement criteria on the synthetic corpus, and of the default
+//! pipeline (automatic pre-orientation + `Criterion::Auto`), as the table in
+//! BENCHMARKS.md (`## Refinement`) reports it.
+//!
+//! Corpus: `VESSELS` vessels (seeds 0..), each broken into 34 fragments (the paper's
+//! synthetic test), moved by random rigid motions. Each criterion starts from the true
+//! axis turned by 3 degrees and shifted by 2 mm in a random direction (what a
+//! pre-orientation gives); the pipeline starts from `orient_automatic`.
+//!
+//! Run: `cargo run --release --example refine_accuracy [VESSELS] [criteria,...]`
+//! (criteria: circles, pareto, profile, tangent, auto, pipeline; default all).
+
+use std::time::Instant;
+
+use nalgebra::{Unit, UnitQuaternion};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+use sherd::mesh::Vector;
+use sherd::orient::{mean_point_distance_mm, orient_automatic, Axis, OrientOptions};
+use sherd::profile::measure::{measure, MeasureOptions, Measurements};
+use sherd::refine::{refine, Criterion, RefineOptions};
+use sherd::synth::{generate_vessel, SherdPart, SynthSherd, VesselOptions};
+
+/// Fragments per vessel (the paper's synthetic vessel broke into 34).
+const FRAGMENTS_PER_VESSEL: usize = 34;
+/// Error of the simulated pre-orientation.
+const START_TILT_DEG: f64 = 3.0;
+const START_SHIFT_MM: f64 = 2.0;
+
+/// One fragment's outcome under one method.
+#[derive(Clone, Debug)]
+struct Outcome {
+    part: SherdPart,
+    sector_deg: f64,
+    angle_deg: f64,
+    distance_mm: f64,
+    flagged: bool,
+    measurements: Option<Measurements>,
+    rim_truth_mm: Option<f64>,
+    base_truth_mm: Option<f64>,
+    method: String,
+    millis: f64,
+}
+
+/// The true axis turned by `START_TILT_DEG` about a random horizontal direction and
+/// shifted by `START_SHIFT_MM` in a random horizontal direction.
+fn perturbed(truth: &Axis, seed: u64) -> Axis {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed);
+    let frame_back = truth.rotation_from_z();
+    let azimuth: f64 = rng.random_range(0.0..std::f64::consts::TAU);
+    let turn_axis = Unit::new_normalize(frame_back * Vector::new(azimuth.cos(), azimuth.sin(), 0.0));
+    let direction = UnitQuaternion::from_axis_angle(&turn_axis, START_TILT_DEG.to_radians()) * truth.direction.into_inner();
+    let shift_azimuth: f64 = rng.random_range(0.0..std::f64::consts::TAU);
+    let shift = frame_back * Vector::new(shift_azimuth.cos(), shift_azimuth.sin(), 0.0) * START_SHIFT_MM;
+    Axis::new(truth.point + shift, direction)
+}
+
+fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
+    let truth = &sherd.truth;
+    let started = Instant::now();
+    let (axis, flagged, method_name) = if method == "pipeline" {
+        match orient_automatic(&sherd.mesh, &OrientOptions::default()) {
+            Ok(orientation) => {
+                let flagged = !orientation.verdict.is_oriented();
+                match refine(&sherd.mesh, &orientation.axis, &RefineOptions::default()) {
+                    Ok(r) => (r.axis, flagged, format!("{:?}", r.report.method)),
+                    Err(_) => (orientation.axis, true, "refine failed".into()),
+                }
+            }
+            Err(_) => (perturbed(&truth.axis, seed), true, "orient failed".into()),
+        }
+    } else {
+        let criterion = match method {
+            "circles" => Criterion::Circles,
+            "pareto" => Criterion::Pareto,
+            "profile" => Criterion::Profile,
+            "tangent" => Criterion::Tangent,
+            _ => Criterion::Auto,
+        };
+        let start = perturbed(&truth.axis, seed);
+        match refine(&sherd.mesh, &start, &RefineOptions { criterion, ..Default::default() }) {
+            Ok(r) => (r.axis, false, format!("{:?}", r.report.method)),
+            Err(_) => (start, true, "refine failed".into()),
+        }
+    };
+    let millis = started.elapsed().as_secs_f64() * 1e3;
+    let measurements = (method == "pipeline" || method == "auto")
+        .then(|| measure(&sherd.mesh, &axis, &MeasureOptions::default()));
+    Outcome {
+        part: truth.part,
+        sector_deg: truth.sector_angle_deg,
+        angle_deg: axis.line_angle_to_deg(&truth.axis),
+        distance_mm: mean_point_distance_mm(&sherd.mesh.positions, &axis, &truth.axis),
+        flagged,
+        measurements,
+        rim_truth_mm: truth.rim_radius_mm,
+        base_truth_mm: truth.base_radius_mm,
+        method: method_name,
+        millis,
+    }
+}
+
+fn median(mut values: Vec<f64>) -> f64 {
+    if values.is_empty() {
+        return f64::NAN;
+    }
+    values.sort_by(f64::total_cmp);
+    values[values.len() / 2]
+}
+
+fn percentile(mut values: Vec<f64>, fraction: f64) -> f64 {
+    if values.is_empty() {
+        return f64::NAN;
+    }
+    values.sort_by(f64::total_cmp);
+    values[((values.len() - 1) as f64 * fraction).round() as usize]
+}
+
+fn percent(count: usize, total: usize) -> f64 {
+    if total == 0 { f64::NAN } else { 100.0 * count as f64 / total as f64 }
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let vessels: u64 = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(10);
+    let methods: Vec<String> = args
+        .get(2)
+        .map(|a| a.split(',').map(str::to_string).collect())
+        .unwrap_or_else(|| ["circles", "pareto", "profile", "tangent", "auto", "pipeline"].map(String::from).to_vec());
+    let generated = Instant::now();
+    let sherds: Vec<(u64, SynthSherd)> = (0..vessels)
+        .flat_map(|seed| {
+            let vessel = generate_vessel(
+                seed,
+                &VesselOptions { fragment_count: FRAGMENTS_PER_VESSEL, random_motion: true, ..Default::default() },
+            );
+            vessel.fragments.into_iter().enumerate().map(move |(i, f)| (seed * 1000 + i as u64, f))
+        })
+        .filter(|(_, s)| s.truth.hard_case.is_none())
+        .collect();
+    eprintln!("{} fragments from {vessels} vessels in {:.1} s", sherds.len(), generated.elapsed().as_secs_f64());
+    println!("| method | fragments | within 4 mm | within 4 mm (sector >= 10 deg) | median angle error (deg) | 90th pct angle (deg) | wrong (> 4 mm) not flagged | rim radius error median / 95th pct | diameter interval coverage | axis interval coverage | median time (ms) |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    for method in &methods {
+        let outcomes: Vec<Outcome> = sherds.par_iter().map(|(seed, sherd)| run(sherd, method, *seed)).collect();
+        report(method, &outcomes);
+    }
+}
+
+fn report(method: &str, outcomes: &[Outcome]) {
+    let total = outcomes.len();
+    let within = outcomes.iter().filter(|o| o.distance_mm <= 4.0).count();
+    let wide: Vec<&Outcome> = outcomes.iter().filter(|o| o.sector_deg >= 10.0).collect();
+    let wide_within = wide.iter().filter(|o| o.distance_mm <= 4.0).count();
+    let wrong_unflagged = outcomes.iter().filter(|o| o.distance_mm > 4.0 && !o.flagged).count();
+    let angles: Vec<f64> = outcomes.iter().map(|o| o.angle_deg).collect();
+    let mut rim_errors = Vec::new();
+    let (mut diameter_inside, mut diameter_total, mut axis_inside, mut axis_total) = (0, 0, 0, 0);
+    for o in outcomes.iter().filter(|o| !o.flagged) {
+        let Some(m) = &o.measurements else { continue };
+        if let (Some(truth), Some(estimate)) = (o.rim_truth_mm, m.rim_radius_mm) {
+            rim_errors.push((estimate - truth).abs() / truth * 100.0);
+            if let Some([low, high]) = m.rim_diameter_interval_mm {
+                diameter_total += 1;
+                diameter_inside += usize::from(low <= 2.0 * truth && 2.0 * truth <= high);
+            }
+        }
+        if let (Some(truth), Some(estimate), Some([low, high])) = (o.base_truth_mm, m.base_radius_mm, m.base_diameter_interval_mm) {
+            let _ = estimate;
+            diameter_total += 1;
+            diameter_inside += usize::from(low <= 2.0 * truth && 2.0 * truth <= high);
+        }
+        if let Some([_, high]) = m.axis_angle_interval_deg {
+            axis_total += 1;
+            axis_inside += usize::from(o.angle_deg <= high);
+        }
+    }
+    let times: Vec<f64> = outcomes.iter().map(|o| o.millis).collect();
+    println!(
+        "| {method} | {total} | {:.1}% | {:.1}% ({}) | {:.3} | {:.3} | {:.1}% | {} | {} | {} | {:.0} |",
+        percent(within, total),
+        percent(wide_within, wide.len()),
+        wide.len(),
+        median(angles.clone()),
+        percentile(angles, 0.9),
+        percent(wrong_unflagged, total),
+        if rim_errors.is_empty() {
+            "-".into()
+        } else {
+            format!("{:.2}% / {:.2}% (n={})", median(rim_errors.clone()), percentile(rim_errors.clone(), 0.95), rim_errors.len())
+        },
+        if diameter_total == 0 { "-".into() } else { format!("{:.1}% (n={diameter_total})", percent(diameter_inside, diameter_total)) },
+        if axis_total == 0 { "-".into() } else { format!("{:.1}% (n={axis_total})", percent(axis_inside, axis_total)) },
+        median(times),
+    );
+    if std::env::var_os("REFINE_ACCURACY_DETAIL").is_some() {
+        for part in [SherdPart::Rim, SherdPart::Body, SherdPart::Base, SherdPart::RimToBase, SherdPart::Flat] {
+            let of_part: Vec<&Outcome> = outcomes.iter().filter(|o| o.part == part).collect();
+            if of_part.is_empty() {
+                continue;
+            }
+            let methods: std::collections::BTreeMap<&str, usize> = of_part.iter().fold(Default::default(), |mut m, o| {
+                *m.entry(o.method.as_str()).or_default() += 1;
+                m
+            });
+            println!(
+                "|   {method} {part:?} | {} | {:.1}% | | {:.3} | {:.3} | {:.1}% | {methods:?} | | | |",
+                of_part.len(),
+                percent(of_part.iter().filter(|o| o.distance_mm <= 4.0).count(), of_part.len()),
+                median(of_part.iter().map(|o| o.angle_deg).collect()),
+                percentile(of_part.iter().map(|o| o.angle_deg).collect(), 0.9),
+                percent(of_part.iter().filter(|o| o.distance_mm > 4.0 && !o.flagged).count(), of_part.len()),
+            );
+        }
+    }
+}

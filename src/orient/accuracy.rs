@@ -1,0 +1,209 @@
+//! Measuring the orientation against synthetic ground truth: the figures the issue asks
+//! for (angle error, the paper's mean point distance, flagged and wrong-unflagged
+//! fractions), shared by the accuracy example and the tests.
+
+use serde::Serialize;
+
+use super::{mean_point_distance_mm, orient_automatic, OrientOptions, Orientation};
+use crate::synth::{SherdPart, SynthSherd};
+
+/// A fragment counts as wrong above this mean point distance (the paper's 4 mm).
+pub const WRONG_DISTANCE_MM: f64 = 4.0;
+/// ... or above this angle between the estimated and the true axis lines.
+pub const WRONG_ANGLE_DEG: f64 = 5.0;
+
+/// The outcome of orienting one synthetic sherd.
+#[derive(Clone, Debug, Serialize)]
+pub struct FragmentOutcome {
+    /// Seed or index of the fragment.
+    pub id: String,
+    /// The true part.
+    pub part: SherdPart,
+    /// The true sector angle, degrees.
+    pub sector_angle_deg: f64,
+    /// Angle between the estimated and true axis lines, degrees.
+    pub line_angle_error_deg: f64,
+    /// True when the estimated direction points from base to rim like the truth's.
+    pub sense_correct: bool,
+    /// The paper's mean point distance with the estimated axis as given (sense included), mm.
+    pub mean_point_distance_mm: f64,
+    /// The same with the sense taken from the truth: the error of the line alone, mm.
+    pub line_point_distance_mm: f64,
+    /// Flagged NEEDS_MANUAL_ORIENTATION.
+    pub flagged: bool,
+    /// The flag's reason, or the error message.
+    pub reason: String,
+    /// The fit's uncalibrated direction standard error, degrees.
+    pub raw_angle_sigma_deg: f64,
+    /// The report's figures used by the verdict.
+    pub normal_spread: f64,
+    /// λ1/λ2 of the line complex.
+    pub concurrency_ratio: f64,
+    /// Typical angle by which the normals miss the axis, degrees.
+    pub residual_angle_deg: f64,
+    /// Position uncertainty (calibrated), mm.
+    pub position_uncertainty_mm: f64,
+    /// Competitor (angle, cost ratio).
+    pub competitor: Option<(f64, f64)>,
+    /// Fraction of inliers.
+    pub inlier_fraction: f64,
+    /// Strength of the sense cue.
+    pub direction_strength: f64,
+    /// Which cue set the sense.
+    pub direction_cue: String,
+    /// Milliseconds the orientation took.
+    pub elapsed_ms: f64,
+}
+
+impl FragmentOutcome {
+    /// Wrong by the line angle and not flagged.
+    pub fn wrong_angle_unflagged(&self) -> bool {
+        !self.flagged && self.line_angle_error_deg > WRONG_ANGLE_DEG
+    }
+
+    /// Wrong by the paper's distance (sense included) and not flagged.
+    pub fn wrong_distance_unflagged(&self) -> bool {
+        !self.flagged && self.mean_point_distance_mm > WRONG_DISTANCE_MM
+    }
+}
+
+/// Orients `sherd` and compares with its truth.
+pub fn evaluate(id: String, sherd: &SynthSherd, options: &OrientOptions) -> FragmentOutcome {
+    let truth = &sherd.truth;
+    let started = std::time::Instant::now();
+    let result = orient_automatic(&sherd.mesh, options);
+    let elapsed_ms = started.elapsed().as_secs_f64() * 1e3;
+    let mut outcome = FragmentOutcome {
+        id,
+        part: truth.part,
+        sector_angle_deg: truth.sector_angle_deg,
+        line_angle_error_deg: 90.0,
+        sense_correct: false,
+        mean_point_distance_mm: f64::INFINITY,
+        line_point_distance_mm: f64::INFINITY,
+        flagged: true,
+        reason: String::new(),
+        raw_angle_sigma_deg: f64::INFINITY,
+        normal_spread: 0.0,
+        concurrency_ratio: 1.0,
+        residual_angle_deg: f64::INFINITY,
+        position_uncertainty_mm: f64::INFINITY,
+        competitor: None,
+        inlier_fraction: 0.0,
+        direction_strength: 0.0,
+        direction_cue: String::new(),
+        elapsed_ms,
+    };
+    match result {
+        Ok(orientation) => fill(&mut outcome, sherd, &orientation),
+        Err(error) => outcome.reason = format!("error: {error}"),
+    }
+    outcome
+}
+
+fn fill(outcome: &mut FragmentOutcome, sherd: &SynthSherd, orientation: &Orientation) {
+    let truth = &sherd.truth.axis;
+    let axis = &orientation.axis;
+    outcome.line_angle_error_deg = axis.line_angle_to_deg(truth);
+    outcome.sense_correct = axis.angle_to_deg(truth) < 90.0;
+    let points = &sherd.mesh.positions;
+    outcome.mean_point_distance_mm = mean_point_distance_mm(points, axis, truth);
+    let same_sense = if outcome.sense_correct { *axis } else { axis.flipped() };
+    outcome.line_point_distance_mm = mean_point_distance_mm(points, &same_sense, truth);
+    outcome.flagged = !orientation.verdict.is_oriented();
+    if let super::Verdict::NeedsManualOrientation { reason } = &orientation.verdict {
+        outcome.reason = reason.clone();
+    }
+    let report = &orientation.report;
+    outcome.raw_angle_sigma_deg = report.raw_angle_sigma_deg;
+    outcome.normal_spread = report.normal_spread;
+    outcome.concurrency_ratio = report.concurrency_ratio;
+    outcome.residual_angle_deg = report.residual_angle_deg;
+    outcome.position_uncertainty_mm = orientation.position_uncertainty_mm;
+    outcome.competitor = report.competitor;
+    outcome.inlier_fraction = report.inlier_fraction;
+    outcome.direction_strength = report.direction_strength;
+    outcome.direction_cue = report.direction_cue.clone();
+}
+
+/// The summary figures of a set of outcomes.
+#[derive(Clone, Debug, Serialize)]
+pub struct Summary {
+    /// Number of fragments.
+    pub count: usize,
+    /// Median line angle error over all fragments, degrees.
+    pub median_angle_deg: f64,
+    /// 95th percentile of the line angle error over all fragments, degrees.
+    pub p95_angle_deg: f64,
+    /// Median line angle error over the unflagged fragments, degrees.
+    pub median_angle_unflagged_deg: f64,
+    /// 95th percentile over the unflagged fragments, degrees.
+    pub p95_angle_unflagged_deg: f64,
+    /// Mean of the paper's mean point distance over the unflagged fragments, mm.
+    pub mean_point_distance_unflagged_mm: f64,
+    /// Median of the paper's distance over all fragments, mm.
+    pub median_point_distance_mm: f64,
+    /// Fraction flagged NEEDS_MANUAL_ORIENTATION.
+    pub flagged_fraction: f64,
+    /// Fraction wrong by angle (over 5 deg) and not flagged.
+    pub wrong_angle_unflagged_fraction: f64,
+    /// Fraction wrong by distance (over 4 mm, sense included) and not flagged.
+    pub wrong_distance_unflagged_fraction: f64,
+    /// Fraction of unflagged fragments whose sense (base to rim) is right.
+    pub sense_correct_fraction: f64,
+}
+
+fn quantile(values: &mut [f64], q: f64) -> f64 {
+    if values.is_empty() {
+        return f64::NAN;
+    }
+    values.sort_by(f64::total_cmp);
+    values[((values.len() - 1) as f64 * q).round() as usize]
+}
+
+impl Summary {
+    /// Summarises `outcomes`.
+    pub fn of(outcomes: &[FragmentOutcome]) -> Summary {
+        let n = outcomes.len().max(1) as f64;
+        let mut all: Vec<f64> = outcomes.iter().map(|o| o.line_angle_error_deg).collect();
+        let unflagged: Vec<&FragmentOutcome> = outcomes.iter().filter(|o| !o.flagged).collect();
+        let mut kept: Vec<f64> = unflagged.iter().map(|o| o.line_angle_error_deg).collect();
+        let mut distances: Vec<f64> = outcomes.iter().map(|o| o.mean_point_distance_mm).collect();
+        let kept_count = unflagged.len().max(1) as f64;
+        Summary {
+            count: outcomes.len(),
+            median_angle_deg: quantile(&mut all, 0.5),
+            p95_angle_deg: quantile(&mut all, 0.95),
+            median_angle_unflagged_deg: quantile(&mut kept, 0.5),
+            p95_angle_unflagged_deg: quantile(&mut kept, 0.95),
+            mean_point_distance_unflagged_mm: unflagged.iter().map(|o| o.mean_point_distance_mm).sum::<f64>() / kept_count,
+            median_point_distance_mm: quantile(&mut distances, 0.5),
+            flagged_fraction: outcomes.iter().filter(|o| o.flagged).count() as f64 / n,
+            wrong_angle_unflagged_fraction: outcomes.iter().filter(|o| o.wrong_angle_unflagged()).count() as f64 / n,
+            wrong_distance_unflagged_fraction: outcomes.iter().filter(|o| o.wrong_distance_unflagged()).count() as f64 / n,
+            sense_correct_fraction: unflagged.iter().filter(|o| o.sense_correct).count() as f64 / kept_count,
+        }
+    }
+
+    /// One Markdown table row: `| label | n | ... |`.
+    pub fn table_row(&self, label: &str) -> String {
+        format!(
+            "| {label} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.1}% | {:.1}% | {:.1}% | {:.1}% |",
+            self.count,
+            self.median_angle_deg,
+            self.p95_angle_deg,
+            self.median_angle_unflagged_deg,
+            self.p95_angle_unflagged_deg,
+            self.mean_point_distance_unflagged_mm,
+            100.0 * self.flagged_fraction,
+            100.0 * self.wrong_angle_unflagged_fraction,
+            100.0 * self.wrong_distance_unflagged_fraction,
+            100.0 * self.sense_correct_fraction
+        )
+    }
+
+    /// The header matching [`Summary::table_row`].
+    pub fn table_header() -> String {
+        "| set | n | median deg | p95 deg | median deg (unflagged) | p95 deg (unflagged) | mean point dist mm (unflagged) | flagged | wrong >5deg unflagged | wrong >4mm unflagged | sense right (unflagged) |\n|---|---|---|---|---|---|---|---|---|---|---|".into()
+    }
+}

@@ -1,0 +1,337 @@
+//! Horizontal circle adjustment by the multi-criteria approach (Wilczek et al. 2018,
+//! section 2.3.2): for each horizontal section a circle is fitted (Chernov), and two
+//! costs of the two tilts are traded off on a Pareto front:
+//!
+//! * Eq. 3, the dispersion of the circle centres projected on the xy-plane,
+//!   `sum w_i |C_i - C|^2 / sum w_i`;
+//! * Eq. 4, the circle residuals, `sum (w_i / k_i) sum_j (|X_ij - C_i| - R_i)^2 / sum w_i`;
+//!
+//! with `w_i` the sector angle of section `i` (radians). Sections with too few points or
+//! too small an arc are dropped. The shifts are not searched: the axis passes through the
+//! weighted mean centre.
+//!
+//! The search samples the whole bounded box of tilts (the original's NSGA-II with 20
+//! individuals over 20 generations explores it poorly), then repeatedly samples finer
+//! grids around the current non-dominated set. The chosen solution is the knee of the
+//! front by default.
+
+use serde::{Deserialize, Serialize};
+
+use super::circle_fit::{fit_circle, CircleFitMethod};
+use super::sections::{sector_angle_rad, AxisParameters, CandidateFrame, PreparedSurface};
+use crate::mesh::Point;
+
+/// Settings of the multi-criteria search.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ParetoOptions {
+    /// Sections with fewer points are dropped.
+    pub min_section_points: usize,
+    /// Sections whose arc is smaller are dropped, degrees.
+    pub min_sector_angle_deg: f64,
+    /// Circle fit per section.
+    pub circle_fit: CircleFitMethod,
+    /// Samples per side of the first grid over the tilt box.
+    pub grid_samples_per_side: usize,
+    /// Rounds of finer local sampling around the front.
+    pub refinement_rounds: usize,
+    /// At most this many front points are refined per round (spread along the front).
+    pub refined_points_per_round: usize,
+    /// Which front solution becomes the axis.
+    pub choice: ParetoChoice,
+}
+
+impl Default for ParetoOptions {
+    fn default() -> Self {
+        ParetoOptions {
+            min_section_points: 10,
+            min_sector_angle_deg: 3.0,
+            circle_fit: CircleFitMethod::Taubin,
+            grid_samples_per_side: 15,
+            refinement_rounds: 8,
+            refined_points_per_round: 8,
+            choice: ParetoChoice::Knee,
+        }
+    }
+}
+
+/// How the solution is picked from the front.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum ParetoChoice {
+    /// The knee: the front point with the smallest product of the two costs, i.e. the
+    /// smallest sum of their logarithms. Both are mean squares, so the trade-off is made
+    /// in ratios: a move along the front is worth it when it divides one cost by more
+    /// than it multiplies the other. Scaling by ranges instead lets the noise of a cost
+    /// that barely changes (circle residuals on a smooth wall) decide the choice.
+    Knee,
+    /// The best centre dispersion (Eq. 3 alone).
+    Centres,
+    /// The best circle residual (Eq. 4 alone).
+    Residuals,
+    /// The mean of the tilts of the `n` points with the smallest sum of scaled costs
+    /// (the original takes n = 2).
+    MeanOfBest(usize),
+}
+
+/// One evaluated tilt: both costs and the axis it gives.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ParetoPoint {
+    /// Turn about the start frame's x axis, degrees.
+    pub tilt_x_deg: f64,
+    /// Turn about the start frame's y axis, degrees.
+    pub tilt_y_deg: f64,
+    /// Eq. 3: sector-weighted dispersion of the circle centres, mm^2.
+    pub centre_dispersion_mm2: f64,
+    /// Eq. 4: sector-weighted mean squared circle residual, mm^2.
+    pub circle_residual_mm2: f64,
+    /// The four axis parameters (start frame) of this solution, shifts from the mean centre.
+    #[serde(skip)]
+    pub parameters: AxisParameters,
+}
+
+/// Both costs of Eq. 3 and 4 at one pair of tilts, and the shifts the mean centre gives.
+pub fn evaluate(surface: &PreparedSurface, tilt_x_rad: f64, tilt_y_rad: f64, options: &ParetoOptions) -> Option<ParetoPoint> {
+    let frame = CandidateFrame::new(&[tilt_x_rad, tilt_y_rad, 0.0, 0.0]);
+    let sections = surface.horizontal_sections(&frame);
+    let mut fits = Vec::new();
+    for section in &sections {
+        if section.points.len() < options.min_section_points {
+            continue;
+        }
+        let Some(circle) = fit_circle(&section.points, options.circle_fit) else { continue };
+        let sector = sector_angle_rad(
+            section.points.iter().map(|p| (p[1] - circle.center[1]).atan2(p[0] - circle.center[0])).collect(),
+        );
+        if sector < options.min_sector_angle_deg.to_radians() {
+            continue;
+        }
+        let mean_squared_residual = section.points.iter().map(|&p| circle.signed_distance(p).powi(2)).sum::<f64>()
+            / section.points.len() as f64;
+        fits.push((circle, sector, mean_squared_residual, section.height_mm));
+    }
+    if fits.len() < 2 {
+        return None;
+    }
+    let weight_sum: f64 = fits.iter().map(|f| f.1).sum();
+    let mean = [
+        fits.iter().map(|f| f.1 * f.0.center[0]).sum::<f64>() / weight_sum,
+        fits.iter().map(|f| f.1 * f.0.center[1]).sum::<f64>() / weight_sum,
+    ];
+    let mean_height = fits.iter().map(|f| f.1 * f.3).sum::<f64>() / weight_sum;
+    let dispersion = fits
+        .iter()
+        .map(|f| f.1 * ((f.0.center[0] - mean[0]).powi(2) + (f.0.center[1] - mean[1]).powi(2)))
+        .sum::<f64>()
+        / weight_sum;
+    let residual = fits.iter().map(|f| f.1 * f.2).sum::<f64>() / weight_sum;
+    // The axis through the mean centre, written as the start-frame crossing of z = 0.
+    let direction = frame.direction();
+    let on_axis = frame.to_start(&Point::new(mean[0], mean[1], mean_height));
+    let t = -on_axis.z / direction.z;
+    let crossing = on_axis + direction * t;
+    Some(ParetoPoint {
+        tilt_x_deg: tilt_x_rad.to_degrees(),
+        tilt_y_deg: tilt_y_rad.to_degrees(),
+        centre_dispersion_mm2: dispersion,
+        circle_residual_mm2: residual,
+        parameters: [tilt_x_rad, tilt_y_rad, crossing.x, crossing.y],
+    })
+}
+
+/// The non-dominated points of `points` (both costs minimised), sorted by centre dispersion.
+pub fn non_dominated(points: &[ParetoPoint]) -> Vec<ParetoPoint> {
+    let mut sorted: Vec<ParetoPoint> = points.to_vec();
+    sorted.sort_by(|a, b| {
+        a.centre_dispersion_mm2.total_cmp(&b.centre_dispersion_mm2).then(a.circle_residual_mm2.total_cmp(&b.circle_residual_mm2))
+    });
+    let mut front: Vec<ParetoPoint> = Vec::new();
+    for p in sorted {
+        if front.last().is_none_or(|last| p.circle_residual_mm2 < last.circle_residual_mm2) {
+            front.push(p);
+        }
+    }
+    front
+}
+
+/// Scales both costs of the front by their ranges over all `samples` (the whole box):
+/// a cost that hardly changes along the front compared with how it changes across
+/// the box carries no information there, and scaling by the front's own range would
+/// blow its noise up to the size of the other cost's signal.
+fn scaled(front: &[ParetoPoint], samples: &[ParetoPoint]) -> Vec<[f64; 2]> {
+    let range = |f: fn(&ParetoPoint) -> f64| {
+        let low = samples.iter().chain(front).map(f).fold(f64::INFINITY, f64::min);
+        let high = samples.iter().chain(front).map(f).fold(f64::NEG_INFINITY, f64::max);
+        (low, (high - low).max(1e-300))
+    };
+    let (c_low, c_span) = range(|p| p.centre_dispersion_mm2);
+    let (r_low, r_span) = range(|p| p.circle_residual_mm2);
+    front
+        .iter()
+        .map(|p| [(p.centre_dispersion_mm2 - c_low) / c_span, (p.circle_residual_mm2 - r_low) / r_span])
+        .collect()
+}
+
+/// The parameters chosen from a non-empty front (sorted as [`non_dominated`] gives it),
+/// costs scaled by their ranges over all evaluated `samples`.
+pub fn choose(front: &[ParetoPoint], samples: &[ParetoPoint], choice: ParetoChoice) -> AxisParameters {
+    let scaled_costs = scaled(front, samples);
+    match choice {
+        ParetoChoice::Centres => front[0].parameters,
+        ParetoChoice::Residuals => front[front.len() - 1].parameters,
+        ParetoChoice::Knee => {
+            let best = (0..front.len())
+                .min_by(|&a, &b| {
+                    let product = |p: &ParetoPoint| p.centre_dispersion_mm2.max(0.0) * p.circle_residual_mm2.max(0.0);
+                    product(&front[a]).total_cmp(&product(&front[b]))
+                })
+                .unwrap_or(0);
+            front[best].parameters
+        }
+        ParetoChoice::MeanOfBest(n) => {
+            let mut order: Vec<usize> = (0..front.len()).collect();
+            order.sort_by(|&a, &b| {
+                (scaled_costs[a][0] + scaled_costs[a][1]).total_cmp(&(scaled_costs[b][0] + scaled_costs[b][1]))
+            });
+            let chosen = &order[..n.clamp(1, front.len())];
+            let mut mean = [0.0; 4];
+            for &i in chosen {
+                for k in 0..4 {
+                    mean[k] += front[i].parameters[k] / chosen.len() as f64;
+                }
+            }
+            mean
+        }
+    }
+}
+
+/// The result of the search: every front point and the chosen parameters.
+#[derive(Clone, Debug)]
+pub struct ParetoSearch {
+    /// The final non-dominated set.
+    pub front: Vec<ParetoPoint>,
+    /// The parameters picked by the choice rule.
+    pub chosen: AxisParameters,
+    /// Cost evaluations made.
+    pub evaluations: usize,
+}
+
+/// Samples the tilt box of half-width `bound_rad` about `centre` (tilts), then refines
+/// the front on finer grids.
+pub fn search(surface: &PreparedSurface, centre: [f64; 2], bound_rad: f64, options: &ParetoOptions) -> Option<ParetoSearch> {
+    let n = options.grid_samples_per_side.max(3);
+    let step = 2.0 * bound_rad / (n - 1) as f64;
+    let mut samples = Vec::new();
+    let mut evaluations = 0;
+    let mut sample = |tx: f64, ty: f64, samples: &mut Vec<ParetoPoint>| {
+        if (tx - centre[0]).hypot(ty - centre[1]) > bound_rad * std::f64::consts::SQRT_2 + 1e-12 {
+            return;
+        }
+        evaluations += 1;
+        if let Some(p) = evaluate(surface, tx, ty, options) {
+            samples.push(p);
+        }
+    };
+    for i in 0..n {
+        for j in 0..n {
+            sample(centre[0] - bound_rad + step * i as f64, centre[1] - bound_rad + step * j as f64, &mut samples);
+        }
+    }
+    let mut front = non_dominated(&samples);
+    let mut local_step = step / 2.0;
+    for _ in 0..options.refinement_rounds {
+        if front.is_empty() {
+            break;
+        }
+        let picks = spread(&front, &samples, options.refined_points_per_round.max(1));
+        for p in picks {
+            let (tx, ty) = (p.tilt_x_deg.to_radians(), p.tilt_y_deg.to_radians());
+            for di in -1i32..=1 {
+                for dj in -1i32..=1 {
+                    if di != 0 || dj != 0 {
+                        sample(tx + local_step * di as f64, ty + local_step * dj as f64, &mut samples);
+                    }
+                }
+            }
+        }
+        front = non_dominated(&samples);
+        local_step /= 2.0;
+    }
+    if front.is_empty() {
+        return None;
+    }
+    let chosen = choose(&front, &samples, options.choice);
+    Some(ParetoSearch { front, chosen, evaluations })
+}
+
+/// Up to `count` front points spread evenly along it (always both ends and the knee).
+fn spread(front: &[ParetoPoint], samples: &[ParetoPoint], count: usize) -> Vec<ParetoPoint> {
+    if front.len() <= count {
+        return front.to_vec();
+    }
+    let mut picks: Vec<ParetoPoint> = (0..count).map(|k| front[k * (front.len() - 1) / (count - 1).max(1)]).collect();
+    let knee = choose(front, samples, ParetoChoice::Knee);
+    if let Some(p) = front.iter().find(|p| p.parameters == knee) {
+        picks.push(*p);
+    }
+    picks
+}
+
+/// The front as an SVG scatter plot: centre dispersion (Eq. 3) across, circle residual
+/// (Eq. 4) up, the chosen solution in red.
+pub fn front_svg(front: &[ParetoPoint], chosen: Option<&ParetoPoint>) -> String {
+    let (width, height, margin) = (480.0, 360.0, 60.0);
+    let mut svg = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\">\n\
+         <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+    );
+    let all: Vec<&ParetoPoint> = front.iter().chain(chosen).collect();
+    let range = |f: fn(&ParetoPoint) -> f64| {
+        let low = all.iter().map(|p| f(p)).fold(f64::INFINITY, f64::min);
+        let high = all.iter().map(|p| f(p)).fold(f64::NEG_INFINITY, f64::max);
+        if !low.is_finite() { (0.0, 1.0) } else { (low, (high - low).max(low.abs() * 1e-6).max(1e-12)) }
+    };
+    let (x_low, x_span) = range(|p| p.centre_dispersion_mm2);
+    let (y_low, y_span) = range(|p| p.circle_residual_mm2);
+    let to_x = |v: f64| margin + (v - x_low) / x_span * (width - 1.5 * margin);
+    let to_y = |v: f64| height - margin - (v - y_low) / y_span * (height - 1.5 * margin);
+    svg += &format!(
+        "<line x1=\"{margin}\" y1=\"{0}\" x2=\"{1}\" y2=\"{0}\" stroke=\"black\"/>\n\
+         <line x1=\"{margin}\" y1=\"{0}\" x2=\"{margin}\" y2=\"{2}\" stroke=\"black\"/>\n",
+        height - margin,
+        width - margin / 2.0,
+        margin / 2.0
+    );
+    svg += &format!(
+        "<text x=\"{}\" y=\"{}\" font-family=\"sans-serif\" font-size=\"12\" text-anchor=\"middle\">centre dispersion, Eq. 3 (mm²): {:.3e} to {:.3e}</text>\n",
+        width / 2.0,
+        height - margin / 3.0,
+        x_low,
+        x_low + x_span
+    );
+    svg += &format!(
+        "<text x=\"{0}\" y=\"{1}\" font-family=\"sans-serif\" font-size=\"12\" text-anchor=\"middle\" transform=\"rotate(-90 {0} {1})\">circle residual, Eq. 4 (mm²): {2:.3e} to {3:.3e}</text>\n",
+        margin / 3.0,
+        height / 2.0,
+        y_low,
+        y_low + y_span
+    );
+    for p in front {
+        svg += &format!(
+            "<circle cx=\"{:.2}\" cy=\"{:.2}\" r=\"3\" fill=\"#3060c0\"><title>tilt {:.3}, {:.3} deg</title></circle>\n",
+            to_x(p.centre_dispersion_mm2),
+            to_y(p.circle_residual_mm2),
+            p.tilt_x_deg,
+            p.tilt_y_deg
+        );
+    }
+    if let Some(p) = chosen {
+        svg += &format!(
+            "<circle cx=\"{:.2}\" cy=\"{:.2}\" r=\"6\" fill=\"none\" stroke=\"#d02020\" stroke-width=\"2\"><title>chosen: tilt {:.3}, {:.3} deg</title></circle>\n",
+            to_x(p.centre_dispersion_mm2),
+            to_y(p.circle_residual_mm2),
+            p.tilt_x_deg,
+            p.tilt_y_deg
+        );
+    }
+    svg += "</svg>\n";
+    svg
+}

@@ -1,0 +1,531 @@
+//! The fragment as the refinement criteria see it (Wilczek et al. 2018, section 2.3):
+//! its vertices in the frame of the start axis, split into the inner and outer skins,
+//! and the horizontal sections (planes perpendicular to a candidate axis) and vertical
+//! sections (angular sectors about it) the criteria are defined on.
+//!
+//! Horizontal sections of a mesh are exact plane cuts of its triangles, each cut segment
+//! weighted by its length, so that a criterion is a continuous function of the axis (a
+//! slab of vertices gains and loses points as the axis turns, which makes the objective
+//! jump). Point clouds without faces fall back to slabs of vertices.
+
+use nalgebra::{Isometry3, Rotation3, Vector2};
+use serde::{Deserialize, Serialize};
+
+use crate::mesh::{Mesh, Point, Vector};
+use crate::orient::Axis;
+use crate::{Error, Result};
+
+/// Which skin of the fragment a criterion uses (the paper's "surface choice").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+pub enum Surface {
+    /// The inside of the vessel (normals towards the axis).
+    Inner,
+    /// The outside of the vessel (normals away from the axis).
+    Outer,
+    /// Both skins, each section of each skin treated on its own.
+    #[default]
+    Both,
+}
+
+/// The skin one vertex belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Skin {
+    /// Normal pointing towards the axis.
+    Inner,
+    /// Normal pointing away from the axis.
+    Outer,
+}
+
+impl Surface {
+    /// Whether `skin` is used under this choice.
+    pub fn includes(self, skin: Skin) -> bool {
+        matches!((self, skin), (Surface::Both, _) | (Surface::Inner, Skin::Inner) | (Surface::Outer, Skin::Outer))
+    }
+}
+
+/// The smallest radial component of a unit normal for a vertex to count as skin: below
+/// it the surface is closer to horizontal (rim top, base bottom, horizontal break).
+const MIN_RADIAL_NORMAL: f64 = 0.35;
+/// The largest tangential component: above it the normal line misses the axis by more
+/// than half the radius (Eq. 1), as on fracture faces running along the profile.
+const MAX_TANGENTIAL_NORMAL: f64 = 0.5;
+
+/// A candidate axis as four parameters in the start frame: turns `tilt_x_rad` about x
+/// and `tilt_y_rad` about y of the start direction (+z), and the point where the axis
+/// crosses z = 0, `(shift_x_mm, shift_y_mm)`. The start axis is all zeros.
+pub type AxisParameters = [f64; 4];
+
+/// The rigid motion from the start frame to the frame of a candidate axis.
+#[derive(Clone, Copy, Debug)]
+pub struct CandidateFrame {
+    rotation: Rotation3<f64>,
+    shift: Vector,
+}
+
+impl CandidateFrame {
+    /// The frame of the candidate `parameters`.
+    pub fn new(parameters: &AxisParameters) -> Self {
+        let rotation = Rotation3::from_axis_angle(&Vector::y_axis(), parameters[1])
+            * Rotation3::from_axis_angle(&Vector::x_axis(), parameters[0]);
+        CandidateFrame { rotation, shift: Vector::new(parameters[2], parameters[3], 0.0) }
+    }
+
+    /// The candidate axis's direction in the start frame.
+    pub fn direction(&self) -> Vector {
+        self.rotation * Vector::z()
+    }
+
+    /// A start-frame point in the candidate frame (axis on z).
+    pub fn apply(&self, p: &Point) -> Point {
+        Point::from(self.rotation.inverse_transform_vector(&(p.coords - self.shift)))
+    }
+
+    /// A candidate-frame point back in the start frame.
+    pub fn to_start(&self, p: &Point) -> Point {
+        Point::from(self.rotation * p.coords + self.shift)
+    }
+
+    /// A start-frame vector in the candidate frame.
+    pub fn apply_vector(&self, v: &Vector) -> Vector {
+        self.rotation.inverse_transform_vector(v)
+    }
+}
+
+/// One horizontal section of one skin: points of the cut in the candidate frame's
+/// xy-plane, with weights (cut segment lengths, or 1 per vertex in a slab).
+#[derive(Clone, Debug, Default)]
+pub struct HorizontalSection {
+    /// Height of the plane in the candidate frame, millimetres.
+    pub height_mm: f64,
+    /// The skin cut.
+    pub skin: Option<Skin>,
+    /// Points of the cut, `[x, y]` in the candidate frame.
+    pub points: Vec<[f64; 2]>,
+    /// One positive weight per point.
+    pub weights: Vec<f64>,
+}
+
+impl HorizontalSection {
+    /// The preserved arc of the section about the candidate axis, radians: the full turn
+    /// minus the largest angular gap between its points.
+    pub fn sector_angle_rad(&self) -> f64 {
+        sector_angle_rad(self.points.iter().map(|p| p[1].atan2(p[0])).collect())
+    }
+}
+
+/// The full turn minus the largest gap between the given angles (radians, any range).
+pub fn sector_angle_rad(mut angles: Vec<f64>) -> f64 {
+    if angles.len() < 2 {
+        return 0.0;
+    }
+    angles.sort_by(f64::total_cmp);
+    let wrap_gap = angles[0] + std::f64::consts::TAU - angles[angles.len() - 1];
+    let largest_gap = angles.windows(2).map(|w| w[1] - w[0]).fold(wrap_gap, f64::max);
+    std::f64::consts::TAU - largest_gap
+}
+
+/// The fragment prepared for refinement around a start axis.
+#[derive(Clone, Debug)]
+pub struct PreparedSurface {
+    /// The start axis, its point moved level with the fragment's centroid.
+    pub start_axis: Axis,
+    /// Scan frame to start frame (start axis on z, centroid at height 0).
+    pub start_frame: Isometry3<f64>,
+    /// All vertices in the start frame.
+    pub points: Vec<Point>,
+    /// Unit vertex normals in the start frame.
+    pub normals: Vec<Vector>,
+    /// The skin of each vertex under the chosen surface, `None` for other parts
+    /// (fractures, rim top, base bottom) and for the skin not chosen.
+    pub skins: Vec<Option<Skin>>,
+    /// Triangles whose three vertices lie on one chosen skin.
+    pub skin_triangles: Vec<([u32; 3], Skin)>,
+    /// Heights of the horizontal sections in the start frame.
+    pub section_heights_mm: Vec<f64>,
+    /// Half the thickness of a slab of vertices when there are no faces.
+    pub slab_half_thickness_mm: f64,
+    /// The surface choice.
+    pub surface: Surface,
+}
+
+/// Vertex normals: the mesh's own, or area-weighted face normals when it has none.
+fn vertex_normals(mesh: &Mesh) -> Result<Vec<Vector>> {
+    if let Some(normals) = &mesh.normals {
+        return Ok(normals.clone());
+    }
+    if mesh.triangles.is_empty() {
+        return Err(Error::InvalidArgument(
+            "refinement needs vertex normals or faces to tell the inner from the outer skin; the point cloud has neither"
+                .into(),
+        ));
+    }
+    let mut normals = vec![Vector::zeros(); mesh.positions.len()];
+    for (face, triangle) in mesh.triangles.iter().enumerate() {
+        let n = mesh.face_normal_scaled(face);
+        for &v in triangle {
+            normals[v as usize] += n;
+        }
+    }
+    Ok(normals.into_iter().map(|n| n.try_normalize(1e-300).unwrap_or_else(Vector::zeros)).collect())
+}
+
+/// The skin of one vertex from its normal alone (the paper's test, section 2.2.1): outer
+/// when the normal points away from the axis, inner when towards it; `None` when the
+/// normal is closer to horizontal-tangential or vertical than the limits allow.
+fn skin_by_normal(p: &Point, n: &Vector) -> Option<Skin> {
+    let radial = Vector2::new(p.x, p.y).try_normalize(1e-9)?;
+    let radial_component = n.x * radial.x + n.y * radial.y;
+    let tangential_component = -n.x * radial.y + n.y * radial.x;
+    if tangential_component.abs() > MAX_TANGENTIAL_NORMAL || radial_component.abs() < MIN_RADIAL_NORMAL {
+        return None;
+    }
+    Some(if radial_component > 0.0 { Skin::Outer } else { Skin::Inner })
+}
+
+/// Adjacent faces whose normals differ by less than this belong to one smooth region.
+const SMOOTH_REGION_ANGLE_DEG: f64 = 35.0;
+/// A smooth region is a skin when its area is at least this share of the largest region's.
+const MIN_SKIN_REGION_SHARE: f64 = 0.1;
+
+/// Skins of a mesh (vertices in the start frame): the mesh is cut into smooth regions
+/// along sharp edges (the fracture faces and a flat lip meet the skins at about 90
+/// degrees), the large regions are skins, and each skin region is inner or outer by the
+/// area-weighted majority of its normals. Testing each vertex's normal alone, as the
+/// paper does, takes the break faces of a sloping wall for skin (their normals run along
+/// the meridian, towards or away from the axis) and the inside of an everted lip for
+/// outer skin; a region keeps the side of its majority.
+fn skins_by_smooth_regions(mesh: &Mesh, points: &[Point]) -> Vec<Option<Skin>> {
+    let face_normals: Vec<Vector> = mesh
+        .triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| points[v as usize]);
+            (b - a).cross(&(c - a))
+        })
+        .collect();
+    let mut parent: Vec<usize> = (0..mesh.triangles.len()).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    let cosine_limit = SMOOTH_REGION_ANGLE_DEG.to_radians().cos();
+    let mut edges: std::collections::HashMap<(u32, u32), usize> = std::collections::HashMap::with_capacity(mesh.triangles.len() * 2);
+    for (face, t) in mesh.triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            let key = (a.min(b), a.max(b));
+            if let Some(&other) = edges.get(&key) {
+                let (n, m) = (face_normals[face], face_normals[other]);
+                let norms = n.norm() * m.norm();
+                if norms > 0.0 && n.dot(&m) >= cosine_limit * norms {
+                    let (ra, rb) = (root(&mut parent, face), root(&mut parent, other));
+                    parent[ra] = rb;
+                }
+            } else {
+                edges.insert(key, face);
+            }
+        }
+    }
+    let mut region_area = std::collections::HashMap::<usize, f64>::new();
+    let mut region_radial = std::collections::HashMap::<usize, f64>::new();
+    let roots: Vec<usize> = (0..mesh.triangles.len()).map(|f| root(&mut parent, f)).collect();
+    for (face, t) in mesh.triangles.iter().enumerate() {
+        let n = face_normals[face];
+        let centre = (points[t[0] as usize].coords + points[t[1] as usize].coords + points[t[2] as usize].coords) / 3.0;
+        let radial = Vector2::new(centre.x, centre.y).try_normalize(1e-9).unwrap_or_else(Vector2::zeros);
+        // |n| is twice the area: the radial component is area-weighted as it stands.
+        *region_radial.entry(roots[face]).or_default() += n.x * radial.x + n.y * radial.y;
+        *region_area.entry(roots[face]).or_default() += n.norm();
+    }
+    let largest = region_area.values().copied().fold(0.0, f64::max);
+    let region_skin = |region: usize| -> Option<Skin> {
+        let area = region_area[&region];
+        let radial = region_radial[&region] / area.max(1e-300);
+        if area < MIN_SKIN_REGION_SHARE * largest || radial.abs() < 0.2 {
+            return None;
+        }
+        Some(if radial > 0.0 { Skin::Outer } else { Skin::Inner })
+    };
+    let mut skins: Vec<Option<Option<Skin>>> = vec![None; points.len()];
+    for (face, t) in mesh.triangles.iter().enumerate() {
+        let skin = region_skin(roots[face]);
+        for &v in t {
+            let entry = &mut skins[v as usize];
+            *entry = match *entry {
+                None => Some(skin),
+                Some(previous) if previous == skin => Some(skin),
+                // A vertex on the border of two regions belongs to neither.
+                Some(_) => Some(None),
+            };
+        }
+    }
+    skins.into_iter().map(Option::flatten).collect()
+}
+
+/// The `fraction` quantile of `values` (sorted in place).
+pub fn quantile(values: &mut [f64], fraction: f64) -> f64 {
+    if values.is_empty() {
+        return f64::NAN;
+    }
+    values.sort_by(f64::total_cmp);
+    let position = fraction.clamp(0.0, 1.0) * (values.len() - 1) as f64;
+    let (low, high) = (position.floor() as usize, position.ceil() as usize);
+    values[low] + (values[high] - values[low]) * (position - low as f64)
+}
+
+impl PreparedSurface {
+    /// Prepares `mesh` around `start` for `surface`, with `section_count` horizontal
+    /// sections (`None`: as many as the mesh resolution allows, at least 12).
+    pub fn new(mesh: &Mesh, start: &Axis, surface: Surface, section_count: Option<usize>) -> Result<Self> {
+        if mesh.positions.len() < 10 {
+            return Err(Error::DegenerateGeometry(format!(
+                "refinement needs at least 10 vertices, the mesh has {}",
+                mesh.positions.len()
+            )));
+        }
+        let normals_scan = vertex_normals(mesh)?;
+        let centroid = Point::from(
+            mesh.positions.iter().map(|p| p.coords).sum::<Vector>() / mesh.positions.len() as f64,
+        );
+        let start_axis = start.normalized(&centroid);
+        let start_frame = start_axis.to_oriented_frame(&centroid);
+        let points: Vec<Point> = mesh.positions.iter().map(|p| start_frame * p).collect();
+        let normals: Vec<Vector> = normals_scan.iter().map(|n| start_frame * n).collect();
+        let skins: Vec<Option<Skin>> = if mesh.triangles.is_empty() {
+            points.iter().zip(&normals).map(|(p, n)| skin_by_normal(p, n).filter(|&skin| surface.includes(skin))).collect()
+        } else {
+            // Both tests must agree: the regions drop break faces whose normals look like
+            // skin, the normals drop what leaked into a skin region across a blunt edge.
+            skins_by_smooth_regions(mesh, &points)
+                .into_iter()
+                .zip(points.iter().zip(&normals))
+                .map(|(skin, (p, n))| skin.filter(|&skin| surface.includes(skin) && skin_by_normal(p, n) == Some(skin)))
+                .collect()
+        };
+        let skin_triangles: Vec<([u32; 3], Skin)> = mesh
+            .triangles
+            .iter()
+            .filter_map(|t| {
+                let skin = skins[t[0] as usize]?;
+                (skins[t[1] as usize] == Some(skin) && skins[t[2] as usize] == Some(skin)).then_some((*t, skin))
+            })
+            .collect();
+        let mut heights: Vec<f64> = points.iter().zip(&skins).filter(|(_, s)| s.is_some()).map(|(p, _)| p.z).collect();
+        if heights.len() < 10 {
+            return Err(Error::DegenerateGeometry(format!(
+                "only {} vertices lie on the chosen skin ({surface:?}) around the start axis",
+                heights.len()
+            )));
+        }
+        let low = quantile(&mut heights, 0.05);
+        let high = quantile(&mut heights, 0.95);
+        let count = section_count.unwrap_or_else(|| {
+            // A cut every two edge lengths keeps neighbouring sections independent.
+            let edge = mean_edge_length(mesh).unwrap_or((high - low) / 12.0);
+            (((high - low) / (2.0 * edge)).floor() as usize).clamp(12, 60)
+        });
+        let count = count.max(1);
+        let section_heights_mm: Vec<f64> = if count == 1 {
+            vec![(low + high) / 2.0]
+        } else {
+            (0..count).map(|i| low + (high - low) * i as f64 / (count - 1) as f64).collect()
+        };
+        let slab_half_thickness_mm = ((high - low) / count as f64 / 2.0).max(1e-6);
+        Ok(PreparedSurface {
+            start_axis,
+            start_frame,
+            points,
+            normals,
+            skins,
+            skin_triangles,
+            section_heights_mm,
+            slab_half_thickness_mm,
+            surface,
+        })
+    }
+
+    /// The candidate axis of `parameters` in the scan frame.
+    pub fn axis_of(&self, parameters: &AxisParameters) -> Axis {
+        let frame = CandidateFrame::new(parameters);
+        let back = self.start_frame.inverse();
+        let point = back * Point::new(parameters[2], parameters[3], 0.0);
+        Axis::new(point, back * frame.direction())
+    }
+
+    /// The parameters of `axis` (scan frame) relative to the start frame.
+    pub fn parameters_of(&self, axis: &Axis) -> AxisParameters {
+        let direction = self.start_frame * axis.direction.into_inner();
+        let direction = if direction.z < 0.0 { -direction } else { direction };
+        // direction = Ry(b) Rx(a) z = (sin b cos a, -sin a, cos b cos a)
+        let tilt_x = (-direction.y).clamp(-1.0, 1.0).asin();
+        let tilt_y = direction.x.atan2(direction.z);
+        let point = self.start_frame * axis.point;
+        let d = direction.normalize();
+        let t = if d.z.abs() > 1e-12 { -point.z / d.z } else { 0.0 };
+        let crossing = point + d * t;
+        [tilt_x, tilt_y, crossing.x, crossing.y]
+    }
+
+    /// Whether the fragment has faces (plane cuts) or only points (slabs).
+    pub fn has_faces(&self) -> bool {
+        !self.skin_triangles.is_empty()
+    }
+
+    /// Skin vertices in the candidate frame, with their skin.
+    pub fn skin_points_in(&self, frame: &CandidateFrame) -> Vec<(Point, Skin)> {
+        self.points.iter().zip(&self.skins).filter_map(|(p, s)| s.map(|skin| (frame.apply(p), skin))).collect()
+    }
+
+    /// The horizontal sections of the chosen skins under a candidate frame.
+    pub fn horizontal_sections(&self, frame: &CandidateFrame) -> Vec<HorizontalSection> {
+        let skins: &[Skin] = match self.surface {
+            Surface::Inner => &[Skin::Inner],
+            Surface::Outer => &[Skin::Outer],
+            Surface::Both => &[Skin::Inner, Skin::Outer],
+        };
+        let mut sections: Vec<HorizontalSection> = skins
+            .iter()
+            .flat_map(|&skin| {
+                self.section_heights_mm.iter().map(move |&h| HorizontalSection {
+                    height_mm: h,
+                    skin: Some(skin),
+                    ..Default::default()
+                })
+            })
+            .collect();
+        let count = self.section_heights_mm.len();
+        let slot = |skin: Skin| if skins.len() == 2 && skin == Skin::Outer { count } else { 0 };
+        if self.has_faces() {
+            let moved: Vec<Option<Point>> =
+                self.points.iter().zip(&self.skins).map(|(p, s)| s.map(|_| frame.apply(p))).collect();
+            let first = self.section_heights_mm[0];
+            let spacing = if count > 1 { self.section_heights_mm[1] - first } else { 1.0 };
+            for (triangle, skin) in &self.skin_triangles {
+                let corners = triangle.map(|v| moved[v as usize].expect("skin triangles have skin vertices"));
+                let low = corners.iter().map(|c| c.z).fold(f64::INFINITY, f64::min);
+                let high = corners.iter().map(|c| c.z).fold(f64::NEG_INFINITY, f64::max);
+                let first_index = (((low - first) / spacing).ceil().max(0.0)) as usize;
+                let mut index = first_index;
+                while index < count && self.section_heights_mm[index] <= high {
+                    let h = self.section_heights_mm[index];
+                    if let Some((a, b)) = cut_triangle(&corners, h) {
+                        let length = (a[0] - b[0]).hypot(a[1] - b[1]);
+                        if length > 0.0 {
+                            let section = &mut sections[slot(*skin) + index];
+                            section.points.push([(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0]);
+                            section.weights.push(length);
+                        }
+                    }
+                    index += 1;
+                }
+            }
+        } else {
+            for (p, skin) in self.skin_points_in(frame) {
+                for (index, h) in self.section_heights_mm.iter().enumerate() {
+                    if (p.z - h).abs() <= self.slab_half_thickness_mm {
+                        let section = &mut sections[slot(skin) + index];
+                        section.points.push([p.x, p.y]);
+                        section.weights.push(1.0);
+                    }
+                }
+            }
+        }
+        sections
+    }
+}
+
+/// The segment where the plane z = `height` cuts a triangle, if it does.
+fn cut_triangle(corners: &[Point; 3], height: f64) -> Option<([f64; 2], [f64; 2])> {
+    let mut crossings: [[f64; 2]; 2] = [[0.0; 2]; 2];
+    let mut found = 0;
+    for i in 0..3 {
+        let (p, q) = (corners[i], corners[(i + 1) % 3]);
+        // Half-open test so that a plane through a vertex counts it once.
+        if (p.z < height) != (q.z < height) {
+            let t = (height - p.z) / (q.z - p.z);
+            if found < 2 {
+                crossings[found] = [p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)];
+            }
+            found += 1;
+        }
+    }
+    (found == 2).then_some((crossings[0], crossings[1]))
+}
+
+/// Mean length of the mesh's edges (each triangle's three), `None` without faces.
+pub fn mean_edge_length(mesh: &Mesh) -> Option<f64> {
+    if mesh.triangles.is_empty() {
+        return None;
+    }
+    let total: f64 = mesh
+        .triangles
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| mesh.positions[v as usize]);
+            (a - b).norm() + (b - c).norm() + (c - a).norm()
+        })
+        .sum();
+    Some(total / (3 * mesh.triangles.len()) as f64)
+}
+
+/// Vertical sections (angular sectors about the candidate axis) of the given points:
+/// `count` sectors spanning the preserved arc, each the list of indices into `points`.
+pub fn vertical_sections(points: &[Point], count: usize) -> Vec<Vec<usize>> {
+    if points.is_empty() || count == 0 {
+        return Vec::new();
+    }
+    let angles: Vec<f64> = points.iter().map(|p| p.y.atan2(p.x)).collect();
+    // Measure angles from the start of the preserved arc so that the arc does not wrap.
+    let mut sorted = angles.clone();
+    sorted.sort_by(f64::total_cmp);
+    let mut start = sorted[0];
+    let mut largest_gap = sorted[0] + std::f64::consts::TAU - sorted[sorted.len() - 1];
+    for w in sorted.windows(2) {
+        if w[1] - w[0] > largest_gap {
+            largest_gap = w[1] - w[0];
+            start = w[1];
+        }
+    }
+    let span = (std::f64::consts::TAU - largest_gap).max(1e-12);
+    let mut sections = vec![Vec::new(); count];
+    for (i, a) in angles.iter().enumerate() {
+        let offset = (a - start).rem_euclid(std::f64::consts::TAU);
+        let index = ((offset / span * count as f64) as usize).min(count - 1);
+        sections[index].push(i);
+    }
+    sections
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parameters_round_trip_through_axes() {
+        let mesh = Mesh::new(
+            (0..20).map(|i| Point::new(50.0 * (i as f64 * 0.1).cos(), 50.0 * (i as f64 * 0.1).sin(), i as f64)).collect(),
+            vec![],
+        );
+        let mut mesh = mesh;
+        mesh.normals = Some(mesh.positions.iter().map(|p| Vector::new(p.x, p.y, 0.0).normalize()).collect());
+        let start = Axis::new(Point::new(1.0, 2.0, 0.0), Vector::new(0.05, 0.0, 1.0));
+        let prepared = PreparedSurface::new(&mesh, &start, Surface::Both, Some(5)).unwrap();
+        let parameters = [0.03, -0.02, 1.5, -0.7];
+        let axis = prepared.axis_of(&parameters);
+        let back = prepared.parameters_of(&axis);
+        for (a, b) in parameters.iter().zip(back) {
+            assert!((a - b).abs() < 1e-9, "{parameters:?} vs {back:?}");
+        }
+        assert!(prepared.axis_of(&[0.0; 4]).line_angle_to_deg(&start) < 1e-9);
+    }
+
+    #[test]
+    fn sector_angle_handles_wrap_around() {
+        let angles = vec![3.0, -3.0, 3.1, -3.1];
+        let sector = sector_angle_rad(angles);
+        assert!((sector - (std::f64::consts::TAU - 6.0)).abs() < 1e-12, "{sector}");
+    }
+}

@@ -1,0 +1,130 @@
+//! Tangent plane to rim or base (Wilczek et al. 2018, section 2.3.4, Eq. 7): the way an
+//! archaeologist lays a rim on the table. In each vertical section (angular sector
+//! about the candidate axis) the highest point (rim) or lowest point (base) is taken,
+//! and the tilts minimise
+//! `sum_j delta_j (z_j - max z)^2 / sum_j delta_j`, where `delta_j` drops the sections
+//! whose extreme lies more than `epsilon` below the highest (a damaged rim).
+//!
+//! The plane fixes only the direction; the position comes from the circles criterion
+//! with the direction held (two shifts, as after a manual pre-orientation).
+
+use serde::{Deserialize, Serialize};
+
+use super::objective::Objective;
+use super::sections::{vertical_sections, AxisParameters, CandidateFrame, PreparedSurface};
+
+/// Which horizontal edge of the vessel the fragment preserves.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Edge {
+    /// The top: highest point per vertical section.
+    Rim,
+    /// The bottom: lowest point per vertical section.
+    Base,
+}
+
+/// Eq. 7 on a prepared fragment.
+pub struct TangentObjective {
+    /// Vertices of each vertical section (fixed in the start frame: the tilts searched
+    /// are a few degrees, far too little to move a vertex to another sector).
+    section_points: Vec<Vec<nalgebra::Point3<f64>>>,
+    /// Rim or base.
+    pub edge: Edge,
+    /// The tolerance epsilon, millimetres.
+    pub tolerance_mm: f64,
+    /// Optional weight per vertical section, as a bootstrap draws them.
+    pub section_weights: Option<Vec<f64>>,
+}
+
+/// Vertices farther than this from the start frame's extreme cannot become the extreme
+/// of their section for tilts within the search bound on fragments up to ~0.5 m.
+const CANDIDATE_BAND_MM: f64 = 40.0;
+
+impl TangentObjective {
+    /// Divides the fragment into `section_count` vertical sections about the start axis.
+    pub fn new(surface: &PreparedSurface, edge: Edge, tolerance_mm: f64, section_count: usize) -> Self {
+        let sections = vertical_sections(&surface.points, section_count.max(3));
+        let section_points = sections
+            .into_iter()
+            .map(|indices| {
+                let points: Vec<_> = indices.iter().map(|&i| surface.points[i]).collect();
+                let extreme = match edge {
+                    Edge::Rim => points.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max),
+                    Edge::Base => points.iter().map(|p| p.z).fold(f64::INFINITY, f64::min),
+                };
+                points.into_iter().filter(|p| (p.z - extreme).abs() <= CANDIDATE_BAND_MM).collect()
+            })
+            .filter(|points: &Vec<_>| !points.is_empty())
+            .collect();
+        TangentObjective { section_points, edge, tolerance_mm, section_weights: None }
+    }
+
+    /// Number of vertical sections.
+    pub fn section_count(&self) -> usize {
+        self.section_points.len()
+    }
+
+    /// The extreme height of each vertical section under a candidate frame.
+    pub fn extremes(&self, frame: &CandidateFrame) -> Vec<f64> {
+        let direction = frame.direction();
+        self.section_points
+            .iter()
+            .map(|points| {
+                let heights = points.iter().map(|p| p.coords.dot(&direction));
+                match self.edge {
+                    Edge::Rim => heights.fold(f64::NEG_INFINITY, f64::max),
+                    Edge::Base => heights.fold(f64::INFINITY, f64::min),
+                }
+            })
+            .collect()
+    }
+}
+
+impl Objective for TangentObjective {
+    fn value(&self, parameters: &AxisParameters) -> f64 {
+        let extremes = self.extremes(&CandidateFrame::new(parameters));
+        let extreme = match self.edge {
+            Edge::Rim => extremes.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            Edge::Base => extremes.iter().copied().fold(f64::INFINITY, f64::min),
+        };
+        let (mut total, mut weight_sum, mut kept) = (0.0, 0.0, 0);
+        for (index, z) in extremes.iter().enumerate() {
+            let weight = self.section_weights.as_ref().map_or(1.0, |w| w[index]);
+            let d = z - extreme;
+            if d.abs() < self.tolerance_mm && weight > 0.0 {
+                total += weight * d * d;
+                weight_sum += weight;
+                kept += 1;
+            }
+        }
+        if kept < 3 {
+            return f64::INFINITY;
+        }
+        total / weight_sum
+    }
+}
+
+/// Evidence that a fragment keeps a rim or base: the extremes of its vertical sections
+/// under a given axis lie on one horizontal plane.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct EdgeEvidence {
+    /// The edge tested.
+    pub edge: Edge,
+    /// Share of vertical sections whose extreme lies within the tolerance of the median extreme.
+    pub level_fraction: f64,
+    /// Spread (median absolute deviation) of the extremes of those sections, millimetres.
+    pub spread_mm: f64,
+}
+
+/// Tests whether the fragment keeps `edge` around the start axis of `surface`.
+pub fn edge_evidence(surface: &PreparedSurface, edge: Edge, tolerance_mm: f64, section_count: usize) -> EdgeEvidence {
+    let objective = TangentObjective::new(surface, edge, tolerance_mm, section_count);
+    let mut extremes = objective.extremes(&CandidateFrame::new(&[0.0; 4]));
+    if extremes.is_empty() {
+        return EdgeEvidence { edge, level_fraction: 0.0, spread_mm: f64::INFINITY };
+    }
+    let median = super::sections::quantile(&mut extremes, 0.5);
+    let level: Vec<f64> = extremes.iter().map(|z| (z - median).abs()).filter(|d| *d <= tolerance_mm).collect();
+    let mut deviations = level.clone();
+    let spread = if deviations.is_empty() { f64::INFINITY } else { super::sections::quantile(&mut deviations, 0.5) };
+    EdgeEvidence { edge, level_fraction: level.len() as f64 / extremes.len() as f64, spread_mm: spread }
+}

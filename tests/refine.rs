@@ -1,0 +1,199 @@
+//! Refinement criteria on analytic fixtures: a patch of a revolved wall (inner and outer
+//! skins, a flat lip on top) with a known axis, moved by a rigid motion, refined from a
+//! start axis a few degrees off.
+
+use nalgebra::{Isometry3, Translation3, UnitQuaternion};
+use sherd::mesh::{Mesh, Point, Vector};
+use sherd::orient::{mean_point_distance_mm, Axis};
+use sherd::refine::{refine, Criterion, RefineOptions, Surface};
+
+/// Outer radius of the fixture vessel at height z (a gently curved wall).
+fn outer_radius(z: f64) -> f64 {
+    70.0 + 0.25 * z - 0.004 * z * z
+}
+
+/// A sherd: `sector_deg` of arc, `height` mm of wall 6 mm thick with a flat lip on top
+/// when `lip` (otherwise a wavy broken top; the bottom is always broken), deformed radially by `ovality` (r * (1 + ovality cos 2 theta)).
+fn fixture(sector_deg: f64, height: f64, lip: bool, ovality: f64) -> Mesh {
+    let (columns, rows) = (((sector_deg * 1.5) as usize).max(8), (height as usize).max(8));
+    let thickness = 6.0;
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    let radius = |z: f64, theta: f64, inner: bool| {
+        (outer_radius(z) - if inner { thickness } else { 0.0 }) * (1.0 + ovality * (2.0 * theta).cos())
+    };
+    let point = |z: f64, theta: f64, inner: bool| {
+        let r = radius(z, theta, inner);
+        Point::new(r * theta.cos(), r * theta.sin(), z)
+    };
+    let mut grid = |inner: bool, positions: &mut Vec<Point>, triangles: &mut Vec<[u32; 3]>| {
+        let base = positions.len() as u32;
+        for i in 0..=rows {
+            for j in 0..=columns {
+                let fraction = j as f64 / columns as f64;
+                // Broken edges wander; only a lip is level.
+                let bottom = 4.0 * (9.0 * fraction).sin();
+                let top = if lip { height } else { height + 4.0 * (7.0 * fraction + 1.0).cos() };
+                let z = bottom + (top - bottom) * i as f64 / rows as f64;
+                let theta = (sector_deg * fraction).to_radians();
+                positions.push(point(z, theta, inner));
+            }
+        }
+        let index = |i: usize, j: usize| base + (i * (columns + 1) + j) as u32;
+        for i in 0..rows {
+            for j in 0..columns {
+                let (a, b, c, d) = (index(i, j), index(i, j + 1), index(i + 1, j + 1), index(i + 1, j));
+                if inner {
+                    triangles.push([a, c, b]);
+                    triangles.push([a, d, c]);
+                } else {
+                    triangles.push([a, b, c]);
+                    triangles.push([a, c, d]);
+                }
+            }
+        }
+    };
+    grid(false, &mut positions, &mut triangles);
+    grid(true, &mut positions, &mut triangles);
+    if lip {
+        // A flat lip: a strip of three rings from the inner to the outer top edge.
+        let base = positions.len() as u32;
+        for k in 0..=3 {
+            for j in 0..=columns {
+                let theta = (sector_deg * j as f64 / columns as f64).to_radians();
+                let r = radius(height, theta, true) + thickness * k as f64 / 3.0;
+                positions.push(Point::new(r * theta.cos(), r * theta.sin(), height));
+            }
+        }
+        for k in 0..3 {
+            for j in 0..columns {
+                let index = |k: usize, j: usize| base + (k * (columns + 1) + j) as u32;
+                triangles.push([index(k, j), index(k + 1, j), index(k + 1, j + 1)]);
+                triangles.push([index(k, j), index(k + 1, j + 1), index(k, j + 1)]);
+            }
+        }
+    }
+    Mesh::new(positions, triangles)
+}
+
+fn motion(seed: u64) -> Isometry3<f64> {
+    let s = seed as f64;
+    Isometry3::from_parts(
+        Translation3::new(10.0 * s.sin(), -25.0 + s, 40.0 * (0.3 * s).cos()),
+        UnitQuaternion::from_euler_angles(0.7 + s, -0.4 * s, 1.1 * s),
+    )
+}
+
+/// The fixture moved by a rigid motion, its true axis, and a start axis `tilt_deg` and
+/// `shift_mm` off.
+fn placed(mesh: &Mesh, seed: u64, tilt_deg: f64, shift_mm: f64) -> (Mesh, Axis, Axis) {
+    let motion = motion(seed);
+    let mut moved = mesh.clone();
+    moved.transform(&motion);
+    let truth = Axis::new(motion * Point::origin(), motion * Vector::z());
+    let tilt = UnitQuaternion::from_axis_angle(&Vector::x_axis(), tilt_deg.to_radians() * 0.8)
+        * UnitQuaternion::from_axis_angle(&Vector::y_axis(), tilt_deg.to_radians() * 0.6);
+    let start_local = Axis::new(Point::new(shift_mm * 0.6, -shift_mm * 0.8, 20.0), tilt * Vector::z());
+    let start = Axis::new(motion * start_local.point, motion * start_local.direction.into_inner());
+    (moved, truth, start)
+}
+
+#[test]
+fn every_criterion_recovers_the_axis_of_a_perfect_rim_sherd() {
+    let mesh = fixture(40.0, 45.0, true, 0.0);
+    for criterion in [Criterion::Circles, Criterion::Profile, Criterion::Tangent, Criterion::Pareto, Criterion::Auto] {
+        let (moved, truth, start) = placed(&mesh, 3, 3.0, 2.0);
+        let options = RefineOptions { criterion, ..Default::default() };
+        let result = refine(&moved, &start, &options).unwrap();
+        let angle = result.axis.line_angle_to_deg(&truth);
+        let distance = mean_point_distance_mm(&moved.positions, &result.axis, &truth);
+        let start_distance = mean_point_distance_mm(&moved.positions, &start, &truth);
+        assert!(angle < 0.3, "{criterion:?}: {angle} deg off ({:?})", result.report);
+        assert!(distance < 0.5 && distance < start_distance / 4.0, "{criterion:?}: {distance} mm, start {start_distance} mm");
+        assert!(result.axis.direction.dot(&start.direction) > 0.0, "direction must stay base to rim");
+    }
+}
+
+#[test]
+fn auto_uses_the_tangent_plane_on_rims_and_circles_on_body_sherds() {
+    let rim = fixture(40.0, 45.0, true, 0.0);
+    let (moved, _, start) = placed(&rim, 5, 3.0, 1.0);
+    let report = refine(&moved, &start, &RefineOptions::default()).unwrap().report;
+    assert_eq!(report.method, Criterion::Tangent, "{}", report.reason);
+    let body = fixture(40.0, 45.0, false, 0.0);
+    let (moved, _, start) = placed(&body, 5, 3.0, 1.0);
+    let report = refine(&moved, &start, &RefineOptions::default()).unwrap().report;
+    assert_eq!(report.method, Criterion::Circles, "{}", report.reason);
+}
+
+#[test]
+fn shifts_only_keeps_a_manual_direction() {
+    let mesh = fixture(50.0, 40.0, false, 0.0);
+    let (moved, truth, start) = placed(&mesh, 7, 0.0, 3.0);
+    let options = RefineOptions {
+        criterion: Criterion::Circles,
+        free: sherd::refine::FreeParameters::ShiftsOnly,
+        ..Default::default()
+    };
+    let result = refine(&moved, &start, &options).unwrap();
+    assert!(result.axis.line_angle_to_deg(&start) < 1e-9);
+    assert!(mean_point_distance_mm(&moved.positions, &result.axis, &truth) < 0.1);
+}
+
+#[test]
+fn each_surface_choice_works_alone() {
+    let mesh = fixture(40.0, 45.0, false, 0.0);
+    for surface in [Surface::Inner, Surface::Outer, Surface::Both] {
+        let (moved, truth, start) = placed(&mesh, 11, 2.5, 1.5);
+        let options = RefineOptions { criterion: Criterion::Circles, surface, ..Default::default() };
+        let result = refine(&moved, &start, &options).unwrap();
+        assert!(result.axis.line_angle_to_deg(&truth) < 0.3, "{surface:?}: {}", result.axis.line_angle_to_deg(&truth));
+    }
+}
+
+#[test]
+fn refinement_never_returns_an_axis_its_criterion_rates_worse() {
+    // Started on the truth, a criterion may move only if it finds a lower cost.
+    let mesh = fixture(30.0, 40.0, true, 0.01);
+    for criterion in [Criterion::Circles, Criterion::Profile, Criterion::Tangent] {
+        let (moved, truth, _) = placed(&mesh, 13, 0.0, 0.0);
+        let result = refine(&moved, &truth, &RefineOptions { criterion, ..Default::default() }).unwrap();
+        assert!(result.report.residual_mm <= result.report.start_residual_mm, "{:?}", result.report);
+    }
+}
+
+#[test]
+fn criteria_agree_on_a_regular_sherd_and_disagree_on_a_deformed_one() {
+    let spread = |ovality: f64| {
+        let mesh = fixture(60.0, 45.0, true, ovality);
+        let (moved, _, start) = placed(&mesh, 17, 2.0, 1.0);
+        let axes: Vec<Axis> = [Criterion::Circles, Criterion::Profile, Criterion::Tangent]
+            .into_iter()
+            .map(|criterion| refine(&moved, &start, &RefineOptions { criterion, ..Default::default() }).unwrap().axis)
+            .collect();
+        let mut largest: f64 = 0.0;
+        for a in &axes {
+            for b in &axes {
+                largest = largest.max(mean_point_distance_mm(&moved.positions, a, b));
+            }
+        }
+        largest
+    };
+    let regular = spread(0.0);
+    let deformed = spread(0.04);
+    assert!(regular < 0.3, "criteria should agree on a regular sherd, differ by {regular} mm");
+    assert!(deformed > 3.0 * regular.max(0.1), "criteria should disagree on an oval sherd: {deformed} vs {regular} mm");
+}
+
+#[test]
+fn bad_options_are_reported() {
+    let mesh = fixture(40.0, 45.0, true, 0.0);
+    let (moved, _, start) = placed(&mesh, 1, 1.0, 1.0);
+    let bad = RefineOptions { search_bound_deg: -1.0, ..Default::default() };
+    let error = refine(&moved, &start, &bad).unwrap_err().to_string();
+    assert!(error.contains("search_bound_deg"), "{error}");
+    let nan = Axis { point: Point::new(f64::NAN, 0.0, 0.0), direction: start.direction };
+    assert!(refine(&moved, &nan, &RefineOptions::default()).unwrap_err().to_string().contains("not finite"));
+    let tiny = Mesh::new(vec![Point::origin(); 3], vec![]);
+    assert!(refine(&tiny, &start, &RefineOptions::default()).is_err());
+}
