@@ -8,6 +8,7 @@
 //! [`Canvas::finish`] maps it to paper millimetres at the publication scale.
 
 use crate::draw::model::{helvetica_width_mm, Anchor, Dots, Drawing, Element, Group, Image, Path, Rgb, Segment, Stroke, Text};
+use crate::draw::font::text_width_mm;
 use crate::draw::stipple::stipple_dots;
 use crate::draw::view::{crease_segments, outline_loops, render_view, Shading, Surface, View};
 use crate::draw::{DrawOptions, Placement, RegularityKind, SectionFill};
@@ -67,7 +68,8 @@ impl Canvas {
                 }),
                 Element::Dots(d) => d.centers.iter().for_each(|c| include(c[0], c[1])),
                 Element::Text(t) => {
-                    let width = helvetica_width_mm(&t.content, t.size_mm) * scale;
+                    // The PNG's stroke font is a little wider than Helvetica: room for both.
+                    let width = helvetica_width_mm(&t.content, t.size_mm).max(text_width_mm(&t.content, t.size_mm)) * scale;
                     let left = match t.anchor {
                         Anchor::Start => t.position[0],
                         Anchor::Middle => t.position[0] - width / 2.0,
@@ -152,7 +154,7 @@ pub(crate) fn build(mesh: &Mesh, axis: &Axis, options: &DrawOptions) -> Result<D
     let style = options.style;
     let occlusion = if style.occlusion || style.stipple {
         let raw = ambient_occlusion(mesh, &options.occlusion)?;
-        Some(stretch(&smooth_over_neighbours(mesh, raw, 3)))
+        Some(stretch(&smooth_over_neighbours(mesh, raw, 4)))
     } else {
         None
     };
@@ -232,7 +234,7 @@ pub(crate) fn build(mesh: &Mesh, axis: &Axis, options: &DrawOptions) -> Result<D
         &[[0.0, z_top + 4.0 * scale], [0.0, z_bottom - 4.0 * scale]],
         false,
         None,
-        Some(canvas.stroke(0.25, &[6.0, 1.2, 0.6, 1.2])),
+        Some(canvas.stroke(0.25, &[4.0, 1.0, 0.5, 1.0])),
     );
     canvas.layer("axis").push(Element::Path(axis_path));
     add_annotations(&mut canvas, &profile, exterior_right, options);

@@ -179,7 +179,7 @@ impl Default for DrawOptions {
             interior_view: true,
             prolongation: true,
             regularity: RegularityKind::IdealVessel,
-            occlusion: OcclusionOptions { directions: 64, resolution: 512 },
+            occlusion: OcclusionOptions { directions: 32, resolution: 512 },
             light_direction: [-0.5, -0.6, 0.62],
             stipple_spacing_mm: 0.35,
             stipple_dot_radius_mm: 0.09,

@@ -24,7 +24,7 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
 pub use deform::Deformation;
-pub use profile::{VesselProfile, VesselShape};
+pub use profile::{RimForm, VesselProfile, VesselShape};
 pub use truth::{GroundTruth, HardCase, RigidMotion, SherdPart, SurfaceKind, VesselTruth};
 pub use write::{read_truth, write_sherd};
 
@@ -107,7 +107,7 @@ pub struct SynthSherd {
     pub truth: GroundTruth,
     /// Outer or inner skin, per vertex.
     pub vertex_kinds: Vec<SurfaceKind>,
-    /// Outer skin, inner skin, fracture or rim top, per face.
+    /// Outer skin, inner skin, fracture or rim (top or rounding), per face.
     pub face_kinds: Vec<SurfaceKind>,
 }
 
@@ -286,7 +286,8 @@ struct FragmentPlan {
 /// Seeds whose Voronoi cell is a fragment of `part`: the fragment's seed in the middle of
 /// the wanted arc-length band, and a ring of 6-9 neighbours at twice the wanted half
 /// extents, so that the bisectors fall on the wanted outline. Neighbours that would lie
-/// beyond the rim are left out when the fragment should reach the rim.
+/// beyond the rim are left out when the fragment should reach the rim, and seeds along
+/// the rest of the rim take their place.
 fn plan_fragment(profile: &VesselProfile, part: SherdPart, options: &SherdOptions, rng: &mut impl Rng) -> Option<FragmentPlan> {
     let length = profile.length_mm();
     let edge = profile.base_edge_s_mm();
@@ -344,6 +345,19 @@ fn plan_fragment(profile: &VesselProfile, part: SherdPart, options: &SherdOption
         theta_extent = [theta_extent[0].min(theta), theta_extent[1].max(theta)];
         s_extent = [s_extent[0].min(s), s_extent[1].max(s)];
         seeds.push(mid_surface_point(profile, theta, s));
+    }
+    if open_top {
+        // With no neighbours above, nothing would stop the cell creeping round the rim
+        // (on a jar's narrow neck the far side of the rim is nearer to the fragment's
+        // seed than to its lateral neighbours): the rest of the rim is broken too, into
+        // pieces about as wide as this one.
+        let step = sector_rad.max(10f64.to_radians());
+        let mut theta = 1.5 * sector_rad.max(step);
+        while theta < std::f64::consts::PI {
+            seeds.push(mid_surface_point(profile, theta, length));
+            seeds.push(mid_surface_point(profile, -theta, length));
+            theta += step;
+        }
     }
     Some(FragmentPlan { seeds, theta: 0.0, s_mm: centre_s, theta_extent, s_extent })
 }
@@ -511,6 +525,7 @@ fn vessel_truth(profile: &VesselProfile, deformation: &Deformation) -> VesselTru
         base_radius_mm: profile.base_radius_mm(),
         height_mm: profile.height_mm(),
         wall_thickness_mm: profile.wall_thickness_mm,
+        rim_form: profile.rim_form,
         deformation: deformation.clone(),
     }
 }
@@ -544,6 +559,13 @@ fn finish(seed: u64, shell: Shell, profile: &VesselProfile, deformation: &Deform
     mesh.transform(&isometry);
     mesh.normals = Some(compute_vertex_normals(&mesh, NormalWeighting::Area));
     let axis = Axis::new(isometry * Point::origin(), isometry * Vector::z());
+    let rim_points: Vec<Point> = mesh
+        .triangles
+        .iter()
+        .zip(&face_kinds)
+        .filter(|(_, kind)| **kind == SurfaceKind::Rim)
+        .flat_map(|(triangle, _)| triangle.map(|v| mesh.positions[v as usize]))
+        .collect();
     let heights = mesh.positions.iter().map(|p| axis.height_of(p));
     let (low, high) = heights.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), h| (lo.min(h), hi.max(h)));
     let truth = GroundTruth {
@@ -551,6 +573,7 @@ fn finish(seed: u64, shell: Shell, profile: &VesselProfile, deformation: &Deform
         rim_radius_mm: matches!(part, SherdPart::Rim | SherdPart::RimToBase).then(|| profile.rim_radius_mm()),
         base_radius_mm: matches!(part, SherdPart::Base | SherdPart::RimToBase).then(|| profile.base_radius_mm()),
         sector_angle_deg: truth::sector_angle_deg(&mesh.positions, &axis),
+        rim_sector_angle_deg: (!rim_points.is_empty()).then(|| truth::sector_angle_deg(&rim_points, &axis)),
         height_mm: (high - low).max(0.0),
         profile: profile.skin_polyline(1.0, PROFILE_STEP_MM),
         inner_profile: profile.skin_polyline(-1.0, PROFILE_STEP_MM),

@@ -12,6 +12,8 @@
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 
+use super::truth::distance_to_polyline;
+
 /// The vessel families the generator draws from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -77,6 +79,20 @@ impl std::str::FromStr for VesselShape {
     }
 }
 
+/// How the wall ends at the rim.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RimForm {
+    /// Cut square across the wall.
+    Flat,
+    /// Rounded: the skins close along a quarter-circle-like cap of radius half the wall
+    /// thickness (up to 70 degrees, leaving a narrow flat top).
+    Rounded,
+}
+
+/// The angle up to which a rounded rim's cap turns before its narrow flat top, radians.
+const ROUNDED_RIM_CAP_ANGLE_RAD: f64 = 70.0 * std::f64::consts::PI / 180.0;
+
 /// A point of the mid-wall curve with its unit outward normal (both in the rz-plane).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ProfileSample {
@@ -99,6 +115,8 @@ pub struct VesselProfile {
     pub shape: VesselShape,
     /// Wall thickness, mm.
     pub wall_thickness_mm: f64,
+    /// How the wall ends at the rim.
+    pub rim_form: RimForm,
     step_mm: f64,
     points: Vec<[f64; 2]>,
     normals: Vec<[f64; 2]>,
@@ -123,7 +141,8 @@ impl VesselProfile {
         loop {
             let (control, thickness) = control_polygon(shape, rng);
             if let Some(profile) = Self::from_control_polygon(shape, &control, thickness) {
-                return profile;
+                let rim_form = if rng.random_bool(0.7) { RimForm::Rounded } else { RimForm::Flat };
+                return profile.with_rim_form(rim_form);
             }
         }
     }
@@ -198,6 +217,7 @@ impl VesselProfile {
         let mut profile = VesselProfile {
             shape,
             wall_thickness_mm,
+            rim_form: RimForm::Flat,
             step_mm,
             points,
             normals,
@@ -245,10 +265,35 @@ impl VesselProfile {
         }
     }
 
+    /// The same profile ending in a rim of `form`.
+    pub fn with_rim_form(self, form: RimForm) -> Self {
+        VesselProfile { rim_form: form, ..self }
+    }
+
+    /// Arc length (mid-wall) where the rim's rounding starts; the rim's end for a flat rim.
+    pub fn rim_cap_start_s_mm(&self) -> f64 {
+        match self.rim_form {
+            RimForm::Flat => self.length_mm(),
+            RimForm::Rounded => self.length_mm() - 0.5 * self.wall_thickness_mm * ROUNDED_RIM_CAP_ANGLE_RAD.sin(),
+        }
+    }
+
+    /// Half the wall thickness at arc length `s_mm`: constant, except over a rounded
+    /// rim's cap, where the skins follow a circle of radius half the thickness.
+    pub fn half_thickness_mm(&self, s_mm: f64) -> f64 {
+        let half = 0.5 * self.wall_thickness_mm;
+        let into_cap = s_mm - self.rim_cap_start_s_mm();
+        if into_cap <= 0.0 {
+            return half;
+        }
+        let sine = (into_cap / half).min(ROUNDED_RIM_CAP_ANGLE_RAD.sin());
+        half * (1.0 - sine * sine).sqrt()
+    }
+
     /// The point of the skin on side `side` (+1 outer, -1 inner) at arc length `s_mm`.
     pub fn skin_at(&self, s_mm: f64, side: f64) -> [f64; 2] {
         let sample = self.sample(s_mm);
-        let offset = side * 0.5 * self.wall_thickness_mm;
+        let offset = side * self.half_thickness_mm(s_mm);
         [(sample.r_mm + offset * sample.normal_r).max(0.0), sample.z_mm + offset * sample.normal_z]
     }
 
@@ -263,10 +308,43 @@ impl VesselProfile {
     }
 
     /// The skin `side` (+1 outer, -1 inner) as a polyline from the base centre to the rim,
-    /// with points about `step_mm` apart along the mid-wall curve.
+    /// points at most `step_mm` apart along the mid-wall curve and close enough on bends
+    /// that the polyline stays within a micrometre of the skin.
     pub fn skin_polyline(&self, side: f64, step_mm: f64) -> Vec<[f64; 2]> {
-        let count = (self.length_mm() / step_mm).ceil().max(1.0) as usize;
-        (0..=count).map(|k| self.skin_at(self.length_mm() * k as f64 / count as f64, side)).collect()
+        // Dense samples (finer over a rounded rim's cap, which bends far more tightly than
+        // the wall), then a greedy simplification keeping the chord error under 1 um.
+        let cap_start = self.rim_cap_start_s_mm();
+        let mut dense: Vec<([f64; 2], f64)> = Vec::new();
+        let mut push_range = |from: f64, to: f64, step: f64| {
+            let count = ((to - from) / step).ceil().max(1.0) as usize;
+            let first = if dense.is_empty() { 0 } else { 1 };
+            for k in first..=count {
+                let s = from + (to - from) * k as f64 / count as f64;
+                dense.push((self.skin_at(s, side), s));
+            }
+        };
+        push_range(0.0, cap_start, 0.05);
+        if self.length_mm() > cap_start {
+            push_range(cap_start, self.length_mm(), 0.005);
+        }
+        const TOLERANCE_MM: f64 = 1e-3;
+        let mut polyline = vec![dense[0].0];
+        let mut start = 0;
+        while start + 1 < dense.len() {
+            let mut end = start + 1;
+            while end + 1 < dense.len() && dense[end + 1].1 - dense[start].1 <= step_mm {
+                let candidate = end + 1;
+                let chord = [dense[start].0, dense[candidate].0];
+                let fits = (start + 1..candidate).all(|k| distance_to_polyline(dense[k].0, &chord) <= TOLERANCE_MM);
+                if !fits {
+                    break;
+                }
+                end = candidate;
+            }
+            polyline.push(dense[end].0);
+            start = end;
+        }
+        polyline
     }
 
     /// Arc length (mid-wall) where the outer skin rises [`BASE_EDGE_RISE_MM`] above the
@@ -281,15 +359,19 @@ impl VesselProfile {
         self.outer_at(self.base_edge_s_mm)[0]
     }
 
-    /// Radius of the rim: the outer skin's radius at the rim's outer edge, mm.
+    /// Radius of the rim: the outer skin's radius at the rim's outer edge (where a
+    /// rounded rim's rounding starts), mm.
     pub fn rim_radius_mm(&self) -> f64 {
-        self.outer_at(self.length_mm())[0]
+        self.outer_at(self.rim_cap_start_s_mm())[0]
     }
 
     /// Height of the vessel: the highest point of either skin above the standing plane, mm.
     pub fn height_mm(&self) -> f64 {
-        let s = self.length_mm();
-        self.outer_at(s)[1].max(self.inner_at(s)[1]).max(self.points.iter().map(|p| p[1]).fold(f64::MIN, f64::max))
+        [1.0, -1.0]
+            .iter()
+            .flat_map(|&side| self.skin_polyline(side, 1.0))
+            .map(|p| p[1])
+            .fold(f64::MIN, f64::max)
     }
 
     /// Largest radius of the outer skin, mm.

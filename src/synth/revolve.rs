@@ -112,7 +112,7 @@ pub struct Shell {
     pub triangles: Vec<[u32; 3]>,
     /// Outer or inner skin, per vertex.
     pub vertex_kinds: Vec<SurfaceKind>,
-    /// Outer skin, inner skin, fracture or rim top, per face.
+    /// Outer skin, inner skin, fracture or rim (top or rounding), per face.
     pub face_kinds: Vec<SurfaceKind>,
     /// Lowest and highest arc length of the fragment's cells, mm.
     pub s_range_mm: [f64; 2],
@@ -147,6 +147,7 @@ pub fn build_shell(grid: &ParamGrid, mask: &[bool], profile: &VesselProfile, def
     let (mut s_low, mut s_high, mut has_rim) = (f64::INFINITY, f64::NEG_INFINITY, false);
     let outer = |v: u32| 2 * v;
     let inner = |v: u32| 2 * v + 1;
+    let rim_cap_start = profile.rim_cap_start_s_mm();
 
     for row in 0..grid.rows {
         for column in 0..grid.columns {
@@ -160,14 +161,16 @@ pub fn build_shell(grid: &ParamGrid, mask: &[bool], profile: &VesselProfile, def
             let c = vertex_of(column + 1, row + 1);
             let d = vertex_of(column, row + 1);
             let fan = grid.pole && row == 0;
+            let on_rim_cap = grid.cell_centre(column, row).1 > rim_cap_start;
+            let (outer_kind, inner_kind) = if on_rim_cap { (SurfaceKind::Rim, SurfaceKind::Rim) } else { (SurfaceKind::Outer, SurfaceKind::Inner) };
             if !fan {
                 triangles.push([outer(a), outer(b), outer(c)]);
                 triangles.push([inner(a), inner(c), inner(b)]);
-                face_kinds.extend([SurfaceKind::Outer, SurfaceKind::Inner]);
+                face_kinds.extend([outer_kind, inner_kind]);
             }
             triangles.push([outer(a), outer(c), outer(d)]);
             triangles.push([inner(a), inner(d), inner(c)]);
-            face_kinds.extend([SurfaceKind::Outer, SurfaceKind::Inner]);
+            face_kinds.extend([outer_kind, inner_kind]);
 
             let inside = |c: isize, r: isize| -> bool {
                 if r < 0 || r >= grid.rows as isize {

@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::deform::Deformation;
-use super::profile::VesselShape;
+use super::profile::{RimForm, VesselShape};
 use crate::mesh::Point;
 use crate::orient::{Axis, AxisRecord};
 
@@ -103,7 +103,7 @@ pub enum SurfaceKind {
     Inner,
     /// A break face across the wall.
     Fracture,
-    /// The top of the rim, across the wall.
+    /// The rim: its flat top across the wall, or its rounding.
     Rim,
 }
 
@@ -149,6 +149,8 @@ pub struct VesselTruth {
     pub height_mm: f64,
     /// Wall thickness, mm.
     pub wall_thickness_mm: f64,
+    /// How the wall ends at the rim.
+    pub rim_form: RimForm,
     /// The deformation applied (ovality, rim tilt, wobble).
     pub deformation: Deformation,
 }
@@ -169,6 +171,9 @@ pub struct GroundTruth {
     /// Angle of the circumference the fragment's points span about the axis, degrees
     /// (360 when it surrounds the axis).
     pub sector_angle_deg: f64,
+    /// Angle of the rim the fragment preserves (the sector its rim faces span), degrees,
+    /// when it has rim: what "12 % of the rim" in a publication measures.
+    pub rim_sector_angle_deg: Option<f64>,
     /// Extent of the fragment along the axis, mm.
     pub height_mm: f64,
     /// The vessel's outer profile `[r, z]` (oriented frame, mm) from the base centre to
