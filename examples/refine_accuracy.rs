@@ -146,6 +146,66 @@ fn main() {
         let outcomes: Vec<Outcome> = sherds.par_iter().map(|(seed, sherd)| run(sherd, method, *seed)).collect();
         report(method, &outcomes);
     }
+    real_sherds();
+}
+
+/// The SfS++ Pot C sherds (`../shared/data/sfspp_pot_C`): surface subsamples (points
+/// with normals, no faces) refined from their reference axis turned by 3 degrees; the
+/// angle to the reference before and after. Skipped when the data are absent.
+fn real_sherds() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/sfspp_pot_C");
+    let Ok(references) = std::fs::read_to_string(root.join("ground_truth/reference_axis_derived.txt")) else {
+        println!("\nSfS++ data absent ({}): skipped", root.display());
+        return;
+    };
+    println!("\n| SfS++ Pot C piece | points | start angle to reference (deg) | circles | tangent/auto | profile |");
+    println!("|---|---|---|---|---|---|");
+    // The reference in each piece's own scan frame is the first line naming the piece.
+    let mut seen = std::collections::HashSet::new();
+    for line in references.lines().filter(|l| l.starts_with("Pot_C_Piece_0")) {
+        let fields: Vec<&str> = line.split_whitespace().collect();
+        if fields.len() != 7 || !seen.insert(fields[0].to_string()) {
+            continue;
+        }
+        let values: Vec<f64> = fields[1..].iter().filter_map(|v| v.parse().ok()).collect();
+        let reference = Axis::new(
+            sherd::mesh::Point::new(values[0], values[1], values[2]),
+            Vector::new(values[3], values[4], values[5]),
+        );
+        let mut positions = Vec::new();
+        let mut normals = Vec::new();
+        for surface in 0..2 {
+            let pattern = format!("{}_Surface_{surface}.first", fields[0]);
+            let Some(file) = std::fs::read_dir(root.join("surfaces_subsample"))
+                .ok()
+                .and_then(|d| d.flatten().find(|e| e.file_name().to_string_lossy().starts_with(&pattern)))
+            else {
+                continue;
+            };
+            for row in std::fs::read_to_string(file.path()).unwrap_or_default().lines() {
+                let v: Vec<f64> = row.split_whitespace().filter_map(|x| x.parse().ok()).collect();
+                if v.len() == 6 {
+                    positions.push(sherd::mesh::Point::new(v[0], v[1], v[2]));
+                    normals.push(Vector::new(v[3], v[4], v[5]));
+                }
+            }
+        }
+        let mesh = sherd::mesh::Mesh::from_points_and_normals(positions, normals);
+        let start = perturbed(&reference, 1);
+        let angle = |criterion: Criterion| match refine(&mesh, &start, &RefineOptions { criterion, ..Default::default() }) {
+            Ok(r) => format!("{:.2}", r.axis.line_angle_to_deg(&reference)),
+            Err(e) => format!("error: {e}"),
+        };
+        println!(
+            "| {} | {} | {:.2} | {} | {} | {} |",
+            fields[0],
+            mesh.vertex_count(),
+            start.line_angle_to_deg(&reference),
+            angle(Criterion::Circles),
+            angle(Criterion::Auto),
+            angle(Criterion::Profile)
+        );
+    }
 }
 
 fn report(method: &str, outcomes: &[Outcome]) {

@@ -84,6 +84,9 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
                     tangent.section_weights = Some(resample_weights(tangent.section_count(), &mut rng));
                     let tilts = SearchSettings { free: FreeParameters::TiltsOnly, ..settings };
                     start = minimize(&tangent, start, &tilts).ok()?.parameters;
+                    if !options.tangent_places_by_circles {
+                        return Some(surface.axis_of(&start));
+                    }
                     FreeParameters::ShiftsOnly
                 }
                 _ => options.free,
