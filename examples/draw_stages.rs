@@ -25,11 +25,37 @@ fn main() -> sherd::Result<()> {
     time("profile_section", &mut || {
         profile_section(mesh, axis, angle);
     });
+    time("measure (no bootstrap)", &mut || {
+        let mut options = sherd::profile::measure::MeasureOptions::default();
+        options.bootstrap.samples = 0;
+        sherd::profile::measure::measure(mesh, axis, &options);
+    });
     for (directions, resolution) in [(32, 512), (64, 512), (128, 1024)] {
         time(&format!("ambient_occlusion {directions} x {resolution}"), &mut || {
             ambient_occlusion(mesh, &OcclusionOptions { directions, resolution }).unwrap();
         });
     }
+    // MeshLab on the same mesh, same number of rays, when pymeshlab is installed.
+    let dir = std::env::temp_dir().join(format!("sherd-draw-stages-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).map_err(|e| sherd::Error::io(&dir, e))?;
+    let input = dir.join("sherd.ply");
+    sherd::mesh::io::write_ply(&input, mesh, sherd::mesh::io::PlyEncoding::BinaryLittleEndian)?;
+    for rays in [32, 128] {
+        let script = format!(
+            "import pymeshlab, time\nms = pymeshlab.MeshSet()\nms.load_new_mesh({:?})\nt = time.time()\n\
+             ms.compute_scalar_ambient_occlusion(rays={rays})\nprint(time.time() - t)\n",
+            input.to_str().unwrap_or_default()
+        );
+        match std::process::Command::new("python3").args(["-c", &script]).output() {
+            Ok(out) if out.status.success() => println!(
+                "{:<48} {:>8} s",
+                format!("pymeshlab ambient occlusion rays={rays}"),
+                String::from_utf8_lossy(&out.stdout).trim()
+            ),
+            _ => println!("pymeshlab not available"),
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
     for style in ["linear", "light", "colour", "regularity", "light,occlusion", "stipple", "linear,colour,light,occlusion,stipple,regularity"] {
         let options = DrawOptions { style: Style::parse(style)?, ..Default::default() };
         let mut drawing = None;

@@ -194,6 +194,17 @@ fn simplify_closed(points: &[[f64; 2]], tolerance: f64) -> Vec<[f64; 2]> {
     first.pop();
     first.extend(second);
     first.pop();
+    // The split points themselves may lie on a straight run: drop those.
+    let mut i = 0;
+    while first.len() > 3 && i < first.len() {
+        let n = first.len();
+        let (previous, next) = (first[(i + n - 1) % n], first[(i + 1) % n]);
+        if segment_distance(first[i], previous, next) <= tolerance {
+            first.remove(i);
+        } else {
+            i += 1;
+        }
+    }
     first
 }
 
