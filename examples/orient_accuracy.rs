@@ -104,7 +104,10 @@ fn real_a011(options: &OrientOptions) {
 }
 
 fn synthetic(options: &OrientOptions, vessels: u64, fragments: usize, csv: Option<&str>) {
-    let vessel_options = VesselOptions { fragment_count: fragments, random_motion: true, ..Default::default() };
+    // 0.8 mm cells: fragments of a few thousand faces, closer to a decimated scan than the
+    // generator's default 2 mm.
+    let vessel_options =
+        VesselOptions { fragment_count: fragments, random_motion: true, cell_size_mm: 0.8, ..Default::default() };
     let mut outcomes: Vec<FragmentOutcome> = (0..vessels)
         .into_par_iter()
         .flat_map(|v| {
@@ -159,14 +162,14 @@ fn synthetic(options: &OrientOptions, vessels: u64, fragments: usize, csv: Optio
         hard_all.extend(hard);
     }
     if let Some(path) = csv {
-        let mut text = String::from("id,part,sector_deg,angle_err,sense_ok,mpd,line_mpd,flagged,raw_sigma,spread,concurrency,resid_angle,pos_unc,comp_angle,comp_ratio,inliers,dir_strength,dir_cue,ms,reason\n");
+        let mut text = String::from("id,part,sector_deg,angle_err,sense_ok,mpd,line_mpd,flagged,raw_sigma,spread,concurrency,resid_angle,sphere_angle,pos_unc,comp_angle,comp_ratio,inliers,dir_strength,dir_cue,ms,reason\n");
         for o in outcomes.iter().chain(&mixed).chain(&hard_all) {
             let (ca, cr) = o.competitor.unwrap_or((0.0, f64::INFINITY));
             text += &format!(
-                "{},{},{:.1},{:.3},{},{:.3},{:.3},{},{:.4},{:.4},{:.4},{:.3},{:.3},{:.1},{:.3},{:.3},{:.3},{},{:.1},\"{}\"\n",
+                "{},{},{:.1},{:.3},{},{:.3},{:.3},{},{:.4},{:.4},{:.4},{:.3},{:.3},{:.3},{:.1},{:.3},{:.3},{:.3},{},{:.1},\"{}\"\n",
                 o.id, o.part.name(), o.sector_angle_deg, o.line_angle_error_deg, o.sense_correct, o.mean_point_distance_mm,
                 o.line_point_distance_mm, o.flagged, o.raw_angle_sigma_deg, o.normal_spread, o.concurrency_ratio,
-                o.residual_angle_deg, o.position_uncertainty_mm, ca, cr, o.inlier_fraction, o.direction_strength,
+                o.residual_angle_deg, o.sphere_residual_angle_deg, o.position_uncertainty_mm, ca, cr, o.inlier_fraction, o.direction_strength,
                 o.direction_cue, o.elapsed_ms, o.reason.replace('"', "'")
             );
         }

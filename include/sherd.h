@@ -178,15 +178,252 @@ typedef uint32_t SherdSynthKind;
 #endif // __cplusplus
 
 /**
+ * The refinement criteria (`SherdRefineOptions`' criterion, and the one a report says
+ * was used).
+ */
+enum SherdCriterion
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Horizontal circles: radius variance (Eq. 2).
+   */
+  SHERD_CRITERION_CIRCLES = 0,
+  /**
+   * Circle centres and residuals on a Pareto front (Eq. 3-4).
+   */
+  SHERD_CRITERION_PARETO = 1,
+  /**
+   * Vertical profile superposition (Eq. 5-6).
+   */
+  SHERD_CRITERION_PROFILE = 2,
+  /**
+   * Tangent plane to the rim or base (Eq. 7), then circles for the position.
+   */
+  SHERD_CRITERION_TANGENT = 3,
+  /**
+   * The tangent plane when the fragment keeps a level rim or base, circles otherwise.
+   */
+  SHERD_CRITERION_AUTO = 4,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdCriterion SherdCriterion;
+#else
+typedef uint32_t SherdCriterion;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * The surfaces a refinement looks at.
+ */
+enum SherdSurface
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * The inside of the vessel.
+   */
+  SHERD_SURFACE_INNER = 0,
+  /**
+   * The outside of the vessel.
+   */
+  SHERD_SURFACE_OUTER = 1,
+  /**
+   * Both skins, each on its own.
+   */
+  SHERD_SURFACE_BOTH = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdSurface SherdSurface;
+#else
+typedef uint32_t SherdSurface;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * Output formats of `sherd_drawing_to_buffer`.
+ */
+enum SherdFormat
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * SVG, one layer per part of the drawing (editable in Inkscape, Illustrator).
+   */
+  SHERD_FORMAT_SVG = 0,
+  /**
+   * Encapsulated PostScript, level 3.
+   */
+  SHERD_FORMAT_EPS = 1,
+  /**
+   * PDF 1.4.
+   */
+  SHERD_FORMAT_PDF = 2,
+  /**
+   * PNG at the options' resolution.
+   */
+  SHERD_FORMAT_PNG = 3,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdFormat SherdFormat;
+#else
+typedef uint32_t SherdFormat;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * Rendering styles, combined as bits for `sherd_draw_options_set_style`.
+ */
+enum SherdStyle
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Outlines and crease lines only.
+   */
+  SHERD_STYLE_LINEAR = 1,
+  /**
+   * Vertex colours or the texture.
+   */
+  SHERD_STYLE_COLOUR = 2,
+  /**
+   * Directional light from the upper left.
+   */
+  SHERD_STYLE_LIGHT = 4,
+  /**
+   * Ambient occlusion.
+   */
+  SHERD_STYLE_OCCLUSION = 8,
+  /**
+   * Dots, denser in darker areas.
+   */
+  SHERD_STYLE_STIPPLE = 16,
+  /**
+   * Vessel regularity as a colour map with its legend.
+   */
+  SHERD_STYLE_REGULARITY = 32,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdStyle SherdStyle;
+#else
+typedef uint32_t SherdStyle;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * How the section is filled (`sherd_draw_options_set_section_fill`).
+ */
+enum SherdSectionFill
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Solid black, the usual convention for pottery.
+   */
+  SHERD_SECTION_FILL_BLACK = 0,
+  /**
+   * 45-degree hatching.
+   */
+  SHERD_SECTION_FILL_HATCHED = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdSectionFill SherdSectionFill;
+#else
+typedef uint32_t SherdSectionFill;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * Where the views stand relative to the axis (`sherd_draw_options_set_placement`).
+ */
+enum SherdPlacement
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Beside the axis, whatever the true radius.
+   */
+  SHERD_PLACEMENT_BESIDE = 0,
+  /**
+   * At the fragment's true distance from the axis.
+   */
+  SHERD_PLACEMENT_TRUE_DISTANCE = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdPlacement SherdPlacement;
+#else
+typedef uint32_t SherdPlacement;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * Which map the regularity style shows (`sherd_draw_options_set_regularity`).
+ */
+enum SherdRegularity
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Distance of each point to the axis.
+   */
+  SHERD_REGULARITY_AXIS_DISTANCE = 0,
+  /**
+   * Distance to the ideal vessel revolved from the section.
+   */
+  SHERD_REGULARITY_IDEAL_VESSEL = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdRegularity SherdRegularity;
+#else
+typedef uint32_t SherdRegularity;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * The fragments the orientation must refuse honestly (NEEDS_MANUAL_ORIENTATION).
+ */
+typedef struct HardCase HardCase;
+
+/**
  * An immutable byte buffer owned by the library. Read it with `sherd_buffer_contents`;
  * release it with `sherd_buffer_free`.
  */
 typedef struct SherdBuffer SherdBuffer;
 
 /**
+ * Options of `sherd_drawing_build`.
+ */
+typedef struct SherdDrawOptions SherdDrawOptions;
+
+/**
+ * A finished drawing. Created by `sherd_drawing_build`, released with
+ * `sherd_drawing_free`; writing it in several formats does not redo the work.
+ */
+typedef struct SherdDrawing SherdDrawing;
+
+/**
  * Options of `sherd_orient_from_three_points`.
  */
 typedef struct SherdManualOptions SherdManualOptions;
+
+/**
+ * Options of `sherd_measure`.
+ */
+typedef struct SherdMeasureOptions SherdMeasureOptions;
 
 /**
  * An owned triangle mesh (or point cloud) in the scan's frame and units.
@@ -207,6 +444,17 @@ typedef struct SherdOrientOptions SherdOrientOptions;
  * Which part of the vessel a fragment comes from (the archaeologist's classification).
  */
 typedef struct SherdPart SherdPart;
+
+/**
+ * Options of `sherd_refine`.
+ */
+typedef struct SherdRefineOptions SherdRefineOptions;
+
+/**
+ * A refined axis with its report and, for the Pareto criterion, the front. Created by
+ * `sherd_refine`, released with `sherd_refinement_free`.
+ */
+typedef struct SherdRefinement SherdRefinement;
 
 /**
  * Options of `sherd_mesh_repair`.
@@ -242,6 +490,68 @@ typedef struct {
 } SherdAxis;
 
 /**
+ * The measurements of an oriented fragment, in millimetres, degrees and litres. A
+ * figure the fragment does not determine (no rim preserved, no interval computed, a
+ * profile that does not reach from base to rim for the capacity) is NaN. Intervals are
+ * `[low, high]` at the options' confidence (95% by default). Set `size` to
+ * `sizeof(SherdMeasurements)` first.
+ */
+typedef struct {
+  /**
+   * `sizeof(SherdMeasurements)`, set by the caller.
+   */
+  size_t size;
+  /**
+   * Radius of the rim (its outer edge), mm.
+   */
+  double rim_radius_mm;
+  /**
+   * Diameter of the rim, mm.
+   */
+  double rim_diameter_mm;
+  /**
+   * Interval of the rim diameter, mm.
+   */
+  double rim_diameter_interval_mm[2];
+  /**
+   * Radius of the base (its outer edge), mm.
+   */
+  double base_radius_mm;
+  /**
+   * Diameter of the base, mm.
+   */
+  double base_diameter_mm;
+  /**
+   * Interval of the base diameter, mm.
+   */
+  double base_diameter_interval_mm[2];
+  /**
+   * Preserved arc of the circumference, degrees.
+   */
+  double sector_angle_deg;
+  /**
+   * Preserved arc as a share of the circumference, percent.
+   */
+  double sector_percent;
+  /**
+   * Preserved height along the axis, mm.
+   */
+  double height_mm;
+  /**
+   * Median wall thickness along the profile, mm.
+   */
+  double wall_thickness_mm;
+  /**
+   * Volume inside the revolved inner profile, litres (complete profiles only).
+   */
+  double capacity_litres;
+  /**
+   * Interval of the axis direction's error, degrees.
+   */
+  double axis_angle_interval_deg[2];
+} SherdMeasurements;
+
+/**
  * How far to trust an orientation (written by `sherd_orient_automatic` and
  * `sherd_orient_from_three_points` when the caller passes one). Set `size` to
  * `sizeof(SherdOrientReport)` first.
@@ -271,6 +581,75 @@ typedef struct {
   size_t kept_vertex_count;
 } SherdOrientReport;
 
+/**
+ * The summary of a refinement. Set `size` to `sizeof(SherdRefineReport)` first.
+ */
+typedef struct {
+  /**
+   * `sizeof(SherdRefineReport)`, set by the caller.
+   */
+  size_t size;
+  /**
+   * The criterion used (a `SHERD_CRITERION_*` value; `AUTO` resolves to the one chosen).
+   */
+  uint32_t criterion;
+  /**
+   * The surface used (a `SHERD_SURFACE_*` value).
+   */
+  uint32_t surface;
+  /**
+   * Objective evaluations or optimiser iterations.
+   */
+  uint64_t iterations;
+  /**
+   * The criterion's residual at the start axis, millimetres.
+   */
+  double start_residual_mm;
+  /**
+   * The criterion's residual at the refined axis, millimetres.
+   */
+  double residual_mm;
+  /**
+   * Angle between the start and refined directions, degrees.
+   */
+  double tilt_deg;
+  /**
+   * Distance between the start and refined axes near the sherd, millimetres.
+   */
+  double shift_mm;
+  /**
+   * Horizontal sections used.
+   */
+  size_t section_count;
+  /**
+   * Points on the Pareto front (0 unless the criterion is Pareto).
+   */
+  size_t pareto_point_count;
+} SherdRefineReport;
+
+/**
+ * One non-dominated solution of the Pareto criterion (Eq. 3-4): the tilts of the axis
+ * from the start axis and its two costs. An element of an array: its layout is fixed.
+ */
+typedef struct {
+  /**
+   * Turn about the start frame's x axis, degrees.
+   */
+  double tilt_x_deg;
+  /**
+   * Turn about the start frame's y axis, degrees.
+   */
+  double tilt_y_deg;
+  /**
+   * Eq. 3: sector-weighted dispersion of the circle centres, mm^2.
+   */
+  double centre_dispersion_mm2;
+  /**
+   * Eq. 4: sector-weighted mean squared circle residual, mm^2.
+   */
+  double circle_residual_mm2;
+} SherdParetoPoint;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -294,6 +673,49 @@ SherdStatus sherd_buffer_contents(const SherdBuffer *buffer,
  * `buffer` must be NULL or a handle from this library not freed before.
  */
 void sherd_buffer_free(SherdBuffer *buffer);
+
+/**
+ * Builds the drawing of `mesh` (the full-resolution scan, in its own frame) oriented by
+ * `axis`: axis as a dash-dot line, section and interior view on the left, exterior view
+ * on the right, rim up, scale bar; styles and layout from `options` (NULL: light and
+ * occlusion, natural size, 300 dpi, the most informative section).
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `options` NULL or live;
+ * `out_drawing` writable.
+ */
+SherdStatus sherd_drawing_build(const SherdMesh *mesh,
+                                const SherdAxis *axis,
+                                const SherdDrawOptions *options,
+                                SherdDrawing **out_drawing);
+
+/**
+ * Writes the drawing to `path`, the format chosen by the extension (.svg, .eps, .pdf,
+ * .png). Atomic: no half-written file on error.
+ *
+ * # Safety
+ * `drawing` must be a live handle; `path` a NUL-terminated string.
+ */
+SherdStatus sherd_drawing_write(const SherdDrawing *drawing, const char *path);
+
+/**
+ * Writes the drawing in `format` (a `SHERD_FORMAT_*` value) into a new buffer
+ * `*out_buffer`, for hosts that keep it in memory (a database, a preview).
+ *
+ * # Safety
+ * `drawing` must be a live handle; `out_buffer` writable.
+ */
+SherdStatus sherd_drawing_to_buffer(const SherdDrawing *drawing,
+                                    uint32_t format,
+                                    SherdBuffer **out_buffer);
+
+/**
+ * Releases a drawing; NULL is ignored. Freeing twice is undefined behaviour.
+ *
+ * # Safety
+ * `drawing` must be NULL or a live handle not freed before.
+ */
+void sherd_drawing_free(SherdDrawing *drawing);
 
 /**
  * The message of the most recent call on this thread that did not return
@@ -355,6 +777,41 @@ SherdStatus sherd_profile_csv(const SherdMesh *mesh,
                               const SherdAxis *axis,
                               double angle_rad,
                               SherdBuffer **out_csv);
+
+/**
+ * Writes the 3D reconstruction of the preserved part of the vessel as PLY: the closed
+ * outlines of the profile section at `angle_rad` (NaN: the most informative angle)
+ * revolved a full turn about the axis with `segments` steps (0: 180, 2 degrees each; at
+ * least 3 otherwise), in the oriented frame, watertight. Atomic.
+ * `SHERD_STATUS_DEGENERATE_GEOMETRY` when the section has no closed outline.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `path` must be a
+ * NUL-terminated string.
+ */
+SherdStatus sherd_export_reconstruction_ply(const SherdMesh *mesh,
+                                            const SherdAxis *axis,
+                                            double angle_rad,
+                                            size_t segments,
+                                            const char *path,
+                                            bool binary);
+
+/**
+ * Measures `mesh` oriented by `axis` (the refined axis). `options` may be NULL for the
+ * defaults (which include a bootstrap for the intervals: a few refinements more).
+ * `out_measurements` (its `size` set) receives the figures; `out_json` (or NULL) all of
+ * them as JSON, with the wall thickness along the profile and notes on what could not
+ * be measured and why.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `options` NULL or
+ * live; `out_measurements` writable with its `size` set; `out_json` NULL or writable.
+ */
+SherdStatus sherd_measure(const SherdMesh *mesh,
+                          const SherdAxis *axis,
+                          const SherdMeasureOptions *options,
+                          SherdMeasurements *out_measurements,
+                          SherdBuffer **out_json);
 
 /**
  * Creates a mesh from host arrays of double-precision positions.
@@ -772,6 +1229,271 @@ SherdStatus sherd_manual_options_set_keep_fraction(SherdManualOptions *options,
  */
 SherdStatus sherd_manual_options_set_max_pick_distance_mm(SherdManualOptions *options,
                                                           double distance_mm);
+
+/**
+ * Creates refinement options with the library's defaults (criterion AUTO, both surfaces).
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_refine_options_new(SherdRefineOptions **out_options);
+
+/**
+ * Releases refinement options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_refine_options_free(SherdRefineOptions *options);
+
+/**
+ * The criterion: a `SHERD_CRITERION_*` value; others give `SHERD_STATUS_INVALID_ARGUMENT`.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_criterion(SherdRefineOptions *options, uint32_t criterion);
+
+/**
+ * The surface: a `SHERD_SURFACE_*` value; others give `SHERD_STATUS_INVALID_ARGUMENT`.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_surface(SherdRefineOptions *options, uint32_t surface);
+
+/**
+ * Number of horizontal sections; 0 lets the library choose from the sherd's height.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_section_count(SherdRefineOptions *options,
+                                                   size_t section_count);
+
+/**
+ * Largest tilt from the start axis the search considers, degrees (finite, positive,
+ * below 90).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_search_bound_deg(SherdRefineOptions *options,
+                                                      double bound_deg);
+
+/**
+ * Creates measurement options with the library's defaults (intervals from a bootstrap
+ * of the default refinement).
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_measure_options_new(SherdMeasureOptions **out_options);
+
+/**
+ * Releases measurement options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_measure_options_free(SherdMeasureOptions *options);
+
+/**
+ * The refinement the intervals' bootstrap repeats: a copy of `refine_options` (pass the
+ * options the axis was refined with).
+ *
+ * # Safety
+ * `options` and `refine_options` must be live handles.
+ */
+SherdStatus sherd_measure_options_set_refine_options(SherdMeasureOptions *options,
+                                                     const SherdRefineOptions *refine_options);
+
+/**
+ * Number of bootstrap resamples behind the intervals; 0 gives no intervals (NaN), and
+ * so do fewer than 5 usable resamples.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_measure_options_set_bootstrap_samples(SherdMeasureOptions *options,
+                                                        size_t samples);
+
+/**
+ * Seed of the bootstrap's resampling (the same seed gives the same intervals).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_measure_options_set_bootstrap_seed(SherdMeasureOptions *options, uint64_t seed);
+
+/**
+ * Confidence level of the intervals, in (0, 1) (default 0.95).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_measure_options_set_confidence(SherdMeasureOptions *options, double confidence);
+
+/**
+ * Creates drawing options with the library's defaults (light and occlusion, 1:1,
+ * 300 dpi, black section, views beside the axis, interior view and prolongation on).
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_draw_options_new(SherdDrawOptions **out_options);
+
+/**
+ * Releases drawing options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_draw_options_free(SherdDrawOptions *options);
+
+/**
+ * The styles: a non-empty bitwise or of `SHERD_STYLE_*` values.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_style(SherdDrawOptions *options, uint32_t styles);
+
+/**
+ * Publication scale 1:`denominator` (1 to 100; 1 is natural size).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_scale_denominator(SherdDrawOptions *options,
+                                                     uint32_t denominator);
+
+/**
+ * Resolution of raster content and PNG output, dots per inch (10 to 4800).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_dpi(SherdDrawOptions *options, double dpi);
+
+/**
+ * Angle of the section about the axis, radians from the fragment's centroid; NaN picks
+ * the most informative profile (the default).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_section_angle_rad(SherdDrawOptions *options, double angle_rad);
+
+/**
+ * Section fill: a `SHERD_SECTION_FILL_*` value.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_section_fill(SherdDrawOptions *options, uint32_t fill);
+
+/**
+ * View placement: a `SHERD_PLACEMENT_*` value.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_placement(SherdDrawOptions *options, uint32_t placement);
+
+/**
+ * The map of the regularity style: a `SHERD_REGULARITY_*` value.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_regularity(SherdDrawOptions *options, uint32_t regularity);
+
+/**
+ * Whether the interior view is drawn left of the axis, and whether the outer profile is
+ * prolonged (dashed) to the full diameter.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_views(SherdDrawOptions *options,
+                                         bool interior_view,
+                                         bool prolongation);
+
+/**
+ * A title (inventory number...) as a NUL-terminated UTF-8 string; NULL removes it.
+ *
+ * # Safety
+ * `options` must be a live handle; `title` NULL or a NUL-terminated string.
+ */
+SherdStatus sherd_draw_options_set_title(SherdDrawOptions *options, const char *title);
+
+/**
+ * Refines `axis` (from `sherd_orient_*`) on `mesh` with the criterion and surface of
+ * `options` (NULL: the defaults, criterion AUTO on both surfaces). The result handle
+ * `*out_refinement` gives the refined axis, the report and the Pareto front.
+ *
+ * Errors: `SHERD_STATUS_DEGENERATE_GEOMETRY` (too few sections, no surface of the
+ * requested kind), `SHERD_STATUS_NOT_CONVERGED`, `SHERD_STATUS_INVALID_ARGUMENT`.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `options` NULL or
+ * live; `out_refinement` writable.
+ */
+SherdStatus sherd_refine(const SherdMesh *mesh,
+                         const SherdAxis *axis,
+                         const SherdRefineOptions *options,
+                         SherdRefinement **out_refinement);
+
+/**
+ * Writes the refined axis (base to rim, the mesh's frame) to `*out_axis` (`size` set).
+ *
+ * # Safety
+ * `refinement` must be a live handle; `out_axis` writable with its `size` set.
+ */
+SherdStatus sherd_refinement_axis(const SherdRefinement *refinement, SherdAxis *out_axis);
+
+/**
+ * Writes the summary of the refinement to `*out_report` (`size` set).
+ *
+ * # Safety
+ * `refinement` must be a live handle; `out_report` writable with its `size` set.
+ */
+SherdStatus sherd_refinement_report(const SherdRefinement *refinement,
+                                    SherdRefineReport *out_report);
+
+/**
+ * Writes the full report (method, reason for the choice, parameters, timings...) as a
+ * JSON object into a new buffer `*out_report_json`.
+ *
+ * # Safety
+ * `refinement` must be a live handle; `out_report_json` writable.
+ */
+SherdStatus sherd_refinement_report_json(const SherdRefinement *refinement,
+                                         SherdBuffer **out_report_json);
+
+/**
+ * Copies the Pareto front into `out_points` (room for `capacity` points) and writes the
+ * number of points to `*out_count`. Pass `out_points` NULL and `capacity` 0 to learn the
+ * count first. The front is empty unless the criterion was Pareto.
+ * `SHERD_STATUS_BUFFER_TOO_SMALL` (with `*out_count` written) when `capacity` is short.
+ *
+ * # Safety
+ * `refinement` must be a live handle; `out_points` NULL (with `capacity` 0) or room for
+ * `capacity` points; `out_count` writable.
+ */
+SherdStatus sherd_refinement_pareto_front(const SherdRefinement *refinement,
+                                          SherdParetoPoint *out_points,
+                                          size_t capacity,
+                                          size_t *out_count);
+
+/**
+ * Releases a refinement; NULL is ignored. Freeing twice is undefined behaviour.
+ *
+ * # Safety
+ * `refinement` must be NULL or a live handle not freed before.
+ */
+void sherd_refinement_free(SherdRefinement *refinement);
 
 /**
  * The name of a status constant as a static NUL-terminated string, e.g.

@@ -11,6 +11,8 @@
 //! * [`refine`]: refinement criteria (section 2.3): circles, Pareto, profile, tangent.
 //! * [`profile`]: sections in the rz-plane, measurements, revolution, regularity.
 //! * [`draw`]: the archaeological illustration (section 2.4) and its writers.
+//! * [`pipeline`]: the layers chained for one scan (read, repair, orient, refine,
+//!   measure, draw), as the command-line tool, the C ABI and batch runs use them.
 //! * [`ffi`]: the stable C ABI; no algorithm lives there.
 
 pub mod error;
@@ -20,6 +22,7 @@ pub mod orient;
 pub mod refine;
 pub mod profile;
 pub mod draw;
+pub mod pipeline;
 pub mod ffi;
 
 pub use error::{Error, Result};

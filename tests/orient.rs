@@ -236,3 +236,75 @@ fn skins_are_segmented() {
     assert!(interior(0).iter().all(|&v| skins[v] == Skin::Outer));
     assert!(interior(1).iter().all(|&v| skins[v] == Skin::Inner));
 }
+
+/// A small synthetic corpus (fixed seeds): three vessels broken into 12 fragments each,
+/// 0.8 mm cells, random poses.
+fn small_corpus() -> Vec<sherd::orient::accuracy::FragmentOutcome> {
+    use sherd::orient::accuracy::evaluate;
+    use sherd::synth::{generate_vessel, VesselOptions};
+    let options = VesselOptions { fragment_count: 12, random_motion: true, cell_size_mm: 0.8, ..Default::default() };
+    (0..3u64)
+        .flat_map(|v| {
+            let vessel = generate_vessel(1000 + v, &options);
+            vessel
+                .fragments
+                .iter()
+                .enumerate()
+                .map(|(k, sherd)| evaluate(format!("vessel{v}-{k}"), sherd, &OrientOptions::default()))
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+#[test]
+fn synthetic_corpus_meets_the_accuracy_goals() {
+    let outcomes = small_corpus();
+    assert!(outcomes.len() >= 30, "only {} fragments", outcomes.len());
+    let summary = sherd::orient::accuracy::Summary::of(&outcomes);
+    println!("{}\n{}", sherd::orient::accuracy::Summary::table_header(), summary.table_row("test corpus"));
+    assert!(summary.median_angle_deg <= 2.0, "median angle error {:.2} deg", summary.median_angle_deg);
+    assert!(
+        summary.wrong_angle_unflagged_fraction <= 0.05,
+        "{:.1}% of the fragments are more than 5 deg off and not flagged",
+        100.0 * summary.wrong_angle_unflagged_fraction
+    );
+    assert!(summary.flagged_fraction < 0.6, "{:.0}% flagged", 100.0 * summary.flagged_fraction);
+}
+
+#[test]
+fn hard_presets_are_flagged() {
+    use sherd::synth::{synthetic_sherd, HardCase, SherdOptions};
+    for case in [HardCase::FlatBase, HardCase::NearSpherical, HardCase::Tiny] {
+        for seed in 0..3 {
+            let sherd = synthetic_sherd(seed, &SherdOptions::hard_case(case));
+            let orientation = orient_automatic(&sherd.mesh, &OrientOptions::default()).unwrap();
+            assert!(
+                !orientation.verdict.is_oriented(),
+                "{case:?} seed {seed} oriented, {:.1} deg off: {:?}",
+                orientation.axis.line_angle_to_deg(&sherd.truth.axis),
+                orientation.report
+            );
+        }
+    }
+}
+
+#[test]
+fn synthetic_skins_match_the_generator() {
+    use sherd::synth::{synthetic_sherd, SherdOptions, SurfaceKind};
+    let sherd = synthetic_sherd(7, &SherdOptions::default());
+    let skins = segment_surfaces(&sherd.mesh, &sherd.truth.axis).unwrap();
+    let (mut agree, mut total) = (0, 0);
+    for (skin, kind) in skins.iter().zip(&sherd.vertex_kinds) {
+        let expected = match kind {
+            SurfaceKind::Outer => Skin::Outer,
+            SurfaceKind::Inner => Skin::Inner,
+            _ => continue,
+        };
+        if *skin != Skin::Other {
+            total += 1;
+            agree += (*skin == expected) as usize;
+        }
+    }
+    assert!(total > sherd.vertex_kinds.len() / 2, "only {total} vertices classified");
+    assert!(agree as f64 >= 0.98 * total as f64, "{agree} of {total} agree");
+}

@@ -1,5 +1,5 @@
-//! Exports in the oriented frame: the oriented mesh as PLY and the profile section as CSV
-//! (to a file or to memory).
+//! Exports in the oriented frame: the oriented mesh and the 3D reconstruction as PLY, the
+//! profile section as CSV (to a file or to memory).
 
 use std::ffi::c_char;
 
@@ -12,7 +12,8 @@ use super::pointers::{path_from, require, write_out};
 use super::status::SherdStatus;
 use crate::mesh::Mesh;
 use crate::orient::Axis;
-use crate::profile::section::{ProfileSection, most_informative_angle, oriented_frame, profile_section};
+use crate::profile::revolve::{oriented_mesh, revolve_profile};
+use crate::profile::section::{ProfileSection, most_informative_angle, profile_section};
 
 /// The section at `angle_rad`, or at the most informative angle when it is NaN.
 fn section_at(mesh: &Mesh, axis: &Axis, angle_rad: f64) -> FfiResult<ProfileSection> {
@@ -46,9 +47,7 @@ pub unsafe extern "C" fn sherd_export_oriented_ply(
         let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
         let axis = unsafe { read_axis(axis, "axis") }?;
         let path = unsafe { path_from(path, "path") }?;
-        let mut oriented = mesh.clone();
-        oriented.transform(&oriented_frame(mesh, &axis));
-        Ok(crate::mesh::io::write_ply(&path, &oriented, ply_encoding(binary))?)
+        Ok(crate::mesh::io::write_ply(&path, &oriented_mesh(mesh, &axis), ply_encoding(binary))?)
     })
 }
 
@@ -110,5 +109,36 @@ pub unsafe extern "C" fn sherd_profile_csv(
         require(out_csv.cast_const(), "out_csv")?;
         let csv = section_at(mesh, &axis, angle_rad)?.to_csv();
         unsafe { hand_out_text(out_csv, csv) }
+    })
+}
+
+/// Steps per turn of a reconstruction when the caller passes 0: 2 degrees each.
+const DEFAULT_REVOLUTION_SEGMENTS: usize = 180;
+
+/// Writes the 3D reconstruction of the preserved part of the vessel as PLY: the closed
+/// outlines of the profile section at `angle_rad` (NaN: the most informative angle)
+/// revolved a full turn about the axis with `segments` steps (0: 180, 2 degrees each; at
+/// least 3 otherwise), in the oriented frame, watertight. Atomic.
+/// `SHERD_STATUS_DEGENERATE_GEOMETRY` when the section has no closed outline.
+///
+/// # Safety
+/// `mesh` must be a live handle; `axis` must have its `size` set; `path` must be a
+/// NUL-terminated string.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_export_reconstruction_ply(
+    mesh: *const SherdMesh,
+    axis: *const SherdAxis,
+    angle_rad: f64,
+    segments: usize,
+    path: *const c_char,
+    binary: bool,
+) -> SherdStatus {
+    guard("sherd_export_reconstruction_ply", || {
+        let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
+        let axis = unsafe { read_axis(axis, "axis") }?;
+        let path = unsafe { path_from(path, "path") }?;
+        let segments = if segments == 0 { DEFAULT_REVOLUTION_SEGMENTS } else { segments };
+        let reconstruction = revolve_profile(&section_at(mesh, &axis, angle_rad)?, segments)?;
+        Ok(crate::mesh::io::write_ply(&path, &reconstruction, ply_encoding(binary))?)
     })
 }

@@ -7,23 +7,29 @@
 //! algorithm lives here: each entry point converts, calls the Rust API and converts back.
 
 pub mod buffer;
+pub mod draw;
 pub mod error;
 pub mod export;
+pub mod measure;
 pub mod mesh;
 pub mod orient;
 pub mod options;
 mod panic;
 mod pointers;
+pub mod refine;
 pub mod status;
 pub mod synth;
 pub mod version;
 
 pub use buffer::*;
+pub use draw::*;
 pub use error::sherd_last_error_message;
 pub use export::*;
+pub use measure::*;
 pub use mesh::*;
 pub use options::*;
 pub use orient::*;
+pub use refine::*;
 pub use status::*;
 pub use synth::*;
 pub use version::*;

@@ -7,7 +7,7 @@
 use rayon::prelude::*;
 
 use crate::mesh::raster::{rasterize_into, OrthographicCamera, ZBuffer};
-use crate::mesh::{Mesh, Point, Vector};
+use crate::mesh::{Mesh, Vector};
 use crate::{Error, Result};
 
 /// Settings of [`ambient_occlusion`].
@@ -43,12 +43,9 @@ pub fn ambient_occlusion(mesh: &Mesh, options: &OcclusionOptions) -> Result<Vec<
     // As MeshLab: per face, from its barycentre along its normal, then the area-weighted
     // mean of the faces around each vertex.
     let face_count = mesh.face_count();
-    let mut centres = Vec::with_capacity(face_count);
     let mut normals = Vec::with_capacity(face_count);
     let mut areas = Vec::with_capacity(face_count);
     for f in 0..face_count {
-        let [a, b, c] = mesh.triangle_points(f);
-        centres.push(Point::from((a.coords + b.coords + c.coords) / 3.0));
         let n = mesh.face_normal_scaled(f);
         areas.push(0.5 * n.norm());
         normals.push(n.try_normalize(1e-30).unwrap_or_else(Vector::zeros));
@@ -74,12 +71,14 @@ pub fn ambient_occlusion(mesh: &Mesh, options: &OcclusionOptions) -> Result<Vec<
                 };
                 let projected = camera.project_all(&mesh.positions);
                 rasterize_into(&mut buffer, &projected, &mesh.triangles);
-                for (f, centre) in centres.iter().enumerate() {
+                for (f, tri) in mesh.triangles.iter().enumerate() {
                     let cosine = normals[f].dot(sky) as f32;
                     if cosine <= 0.0 {
                         continue;
                     }
-                    let p = camera.project(centre);
+                    // Projection is affine: the centre's image is the corners' mean.
+                    let [a, b, c] = tri.map(|v| projected[v as usize]);
+                    let p = [0, 1, 2].map(|k| (a[k] + b[k] + c[k]) / 3.0);
                     // The face is open if it is itself seen around its centre, or if nothing
                     // stands in front of the interpolated depth there. The small
                     // slope-scaled bias absorbs the map's sampling: larger ones hide the
@@ -167,6 +166,7 @@ fn any_perpendicular(v: &Vector) -> Vector {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::Point;
 
 
     /// A flat square floor (many vertices) with a wall standing on half of its edge.

@@ -33,7 +33,10 @@ const KD_LEAF_SIZE: usize = 8;
 const PARALLEL_BUILD_MIN: usize = 8_192;
 /// Largest number of triangles in a BVH leaf.
 const BVH_MAX_LEAF_SIZE: usize = 8;
-/// Number of bins of the binned surface area heuristic.
+/// BVH nodes with at most this many triangles are leaves without weighing a split: the
+/// binning's fixed cost dominated the build for the many small nodes.
+const BVH_MIN_SPLIT_SIZE: usize = 4;
+/// Largest number of bins of the binned surface area heuristic (fewer for small nodes).
 const SAH_BIN_COUNT: usize = 16;
 
 /// A point found by a [`KdTree`] query.
@@ -277,8 +280,14 @@ struct BvhNode {
 struct PrimitiveRef {
     min: [f64; 3],
     max: [f64; 3],
-    centroid: [f64; 3],
     face: u32,
+}
+
+impl PrimitiveRef {
+    /// Centre of the box (not stored: the build is bound by memory traffic).
+    fn centroid(&self) -> [f64; 3] {
+        [0, 1, 2].map(|axis| 0.5 * (self.min[axis] + self.max[axis]))
+    }
 }
 
 /// A bounding volume hierarchy over a mesh's triangles: closest and any ray hits, and
@@ -306,8 +315,7 @@ impl Bvh {
                 let [a, b, c] = tri.map(|v| mesh.positions[v as usize]);
                 let min = [a.x.min(b.x).min(c.x), a.y.min(b.y).min(c.y), a.z.min(b.z).min(c.z)];
                 let max = [a.x.max(b.x).max(c.x), a.y.max(b.y).max(c.y), a.z.max(b.z).max(c.z)];
-                let centroid = [0, 1, 2].map(|k| 0.5 * (min[k] + max[k]));
-                PrimitiveRef { min, max, centroid, face: f as u32 }
+                PrimitiveRef { min, max, face: f as u32 }
             })
             .collect();
         let mut nodes = Vec::with_capacity(2 * refs.len() / 3 + 1);
@@ -593,13 +601,16 @@ fn closest_point_on_triangle(p: &[f64; 3], corners: &[[f64; 3]; 3]) -> [f64; 3] 
     [a[0] + ab[0] * v + ac[0] * w, a[1] + ab[1] * v + ac[1] * w, a[2] + ab[2] * v + ac[2] * w]
 }
 
-fn union_bounds(refs: &[PrimitiveRef]) -> ([f64; 3], [f64; 3]) {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
+/// The bounds of `refs` and the bounds of their centroids, in one pass.
+fn union_bounds(refs: &[PrimitiveRef]) -> ([f64; 3], [f64; 3], [f64; 3], [f64; 3]) {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    let (mut centroid_lo, mut centroid_hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for r in refs {
         grow(&mut lo, &mut hi, &r.min, &r.max);
+        let centroid = r.centroid();
+        grow(&mut centroid_lo, &mut centroid_hi, &centroid, &centroid);
     }
-    (lo, hi)
+    (lo, hi, centroid_lo, centroid_hi)
 }
 
 /// Widens the box `lo..hi` to contain the box `min..max`.
@@ -621,14 +632,14 @@ fn half_area(lo: &[f64; 3], hi: &[f64; 3]) -> f64 {
 /// Builds the subtree over `refs` (which start at `first` in the final leaf order) and
 /// appends its nodes to `out` depth-first.
 fn build_bvh(refs: &mut [PrimitiveRef], first: usize, out: &mut Vec<BvhNode>) {
-    let (min, max) = union_bounds(refs);
+    let (min, max, centroid_lo, centroid_hi) = union_bounds(refs);
     let n = refs.len();
     let leaf = BvhNode { min, max, start_or_right_offset: first as u32, count: n as u32 };
-    if n <= 2 {
+    if n <= BVH_MIN_SPLIT_SIZE {
         out.push(leaf);
         return;
     }
-    let Some(mid) = sah_partition(refs, half_area(&min, &max)) else {
+    let Some(mid) = sah_partition(refs, half_area(&min, &max), &centroid_lo, &centroid_hi) else {
         out.push(leaf);
         return;
     };
@@ -659,41 +670,52 @@ fn build_bvh(refs: &mut [PrimitiveRef], first: usize, out: &mut Vec<BvhNode>) {
 }
 
 /// Partitions `refs` by the cheapest binned-SAH split and returns the size of the left
-/// part, or `None` when a leaf is cheaper (and small enough).
-fn sah_partition(refs: &mut [PrimitiveRef], parent_half_area: f64) -> Option<usize> {
+/// part, or `None` when a leaf is cheaper (and small enough). The bins of all three axes
+/// are filled in one pass over `refs`: the build is bound by memory traffic.
+fn sah_partition(
+    refs: &mut [PrimitiveRef],
+    parent_half_area: f64,
+    centroid_lo: &[f64; 3],
+    centroid_hi: &[f64; 3],
+) -> Option<usize> {
     let n = refs.len();
-    let mut centroid_lo = [f64::INFINITY; 3];
-    let mut centroid_hi = [f64::NEG_INFINITY; 3];
+    let bins = n.min(SAH_BIN_COUNT);
+    let scale: [f64; 3] = std::array::from_fn(|axis| {
+        let extent = centroid_hi[axis] - centroid_lo[axis];
+        if extent > 0.0 { bins as f64 / extent } else { 0.0 }
+    });
+    let bin_of = |r: &PrimitiveRef, axis: usize| {
+        let centroid = 0.5 * (r.min[axis] + r.max[axis]);
+        (((centroid - centroid_lo[axis]) * scale[axis]) as usize).min(bins - 1)
+    };
+    let mut counts = [[0usize; SAH_BIN_COUNT]; 3];
+    let mut bounds = [[([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]); SAH_BIN_COUNT]; 3];
     for r in refs.iter() {
-        grow(&mut centroid_lo, &mut centroid_hi, &r.centroid, &r.centroid);
+        for axis in 0..3 {
+            let bin = bin_of(r, axis);
+            counts[axis][bin] += 1;
+            let (lo, hi) = &mut bounds[axis][bin];
+            grow(lo, hi, &r.min, &r.max);
+        }
     }
     let mut best: Option<(f64, usize, usize)> = None; // (cost, axis, bins on the left)
     for axis in 0..3 {
-        let extent = centroid_hi[axis] - centroid_lo[axis];
-        if !(extent > 0.0) {
+        if scale[axis] == 0.0 {
             continue;
         }
-        let scale = SAH_BIN_COUNT as f64 / extent;
-        let mut counts = [0usize; SAH_BIN_COUNT];
-        let mut bounds = [([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]); SAH_BIN_COUNT];
-        for r in refs.iter() {
-            let bin = (((r.centroid[axis] - centroid_lo[axis]) * scale) as usize).min(SAH_BIN_COUNT - 1);
-            counts[bin] += 1;
-            let (lo, hi) = &mut bounds[bin];
-            grow(lo, hi, &r.min, &r.max);
-        }
+        let (counts, bounds) = (&counts[axis], &bounds[axis]);
         // Sweep from the right to know each suffix's area and count, then from the left.
         let mut right_area = [0.0f64; SAH_BIN_COUNT];
         let mut right_count = [0usize; SAH_BIN_COUNT];
         let (mut lo, mut hi, mut count) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3], 0usize);
-        for bin in (1..SAH_BIN_COUNT).rev() {
+        for bin in (1..bins).rev() {
             grow(&mut lo, &mut hi, &bounds[bin].0, &bounds[bin].1);
             count += counts[bin];
             right_area[bin] = half_area(&lo, &hi);
             right_count[bin] = count;
         }
         let (mut lo, mut hi, mut count) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3], 0usize);
-        for split in 1..SAH_BIN_COUNT {
+        for split in 1..bins {
             let bin = split - 1;
             grow(&mut lo, &mut hi, &bounds[bin].0, &bounds[bin].1);
             count += counts[bin];
@@ -709,13 +731,9 @@ fn sah_partition(refs: &mut [PrimitiveRef], parent_half_area: f64) -> Option<usi
     let split_is_cheaper = |cost: f64| 1.0 + cost / parent_half_area.max(f64::MIN_POSITIVE) < n as f64;
     match best {
         Some((cost, axis, split)) if split_is_cheaper(cost) || n > BVH_MAX_LEAF_SIZE => {
-            let scale = SAH_BIN_COUNT as f64 / (centroid_hi[axis] - centroid_lo[axis]);
-            let goes_left = |r: &PrimitiveRef| {
-                (((r.centroid[axis] - centroid_lo[axis]) * scale) as usize).min(SAH_BIN_COUNT - 1) < split
-            };
             let mut left_end = 0;
             for i in 0..n {
-                if goes_left(&refs[i]) {
+                if bin_of(&refs[i], axis) < split {
                     refs.swap(i, left_end);
                     left_end += 1;
                 }

@@ -41,6 +41,8 @@ pub struct FragmentOutcome {
     pub concurrency_ratio: f64,
     /// Typical angle by which the normals miss the axis, degrees.
     pub residual_angle_deg: f64,
+    /// The same for the best sphere, degrees.
+    pub sphere_residual_angle_deg: f64,
     /// Position uncertainty (calibrated), mm.
     pub position_uncertainty_mm: f64,
     /// Competitor (angle, cost ratio).
@@ -87,6 +89,7 @@ pub fn evaluate(id: String, sherd: &SynthSherd, options: &OrientOptions) -> Frag
         normal_spread: 0.0,
         concurrency_ratio: 1.0,
         residual_angle_deg: f64::INFINITY,
+        sphere_residual_angle_deg: 0.0,
         position_uncertainty_mm: f64::INFINITY,
         competitor: None,
         inlier_fraction: 0.0,
@@ -119,6 +122,7 @@ fn fill(outcome: &mut FragmentOutcome, sherd: &SynthSherd, orientation: &Orienta
     outcome.normal_spread = report.normal_spread;
     outcome.concurrency_ratio = report.concurrency_ratio;
     outcome.residual_angle_deg = report.residual_angle_deg;
+    outcome.sphere_residual_angle_deg = report.sphere_residual_angle_deg;
     outcome.position_uncertainty_mm = orientation.position_uncertainty_mm;
     outcome.competitor = report.competitor;
     outcome.inlier_fraction = report.inlier_fraction;

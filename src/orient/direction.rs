@@ -2,8 +2,6 @@
 //! line; its sense comes from the shape of the vessel seen in the rz half-plane:
 //! - a floor: surface facing along the axis that reaches in towards the axis from the
 //!   wall is a base, and the wall rises from it;
-//! - a free end (rim): at one end of the profile the two skins close in a lip that faces
-//!   away from the sherd and does not reach in towards the axis;
 //! - the opening: a vessel widens from its base more often than it narrows (the weakest
 //!   cue, used alone only when the others are silent).
 
@@ -31,7 +29,7 @@ struct Sample {
 }
 
 /// Weighs the cues for `axis` on the lines that lie on the surface of revolution
-/// (`on_surface[i]`).
+/// (`lines` with `on_surface[i]`).
 pub fn direction_evidence(lines: &NormalLines, on_surface: &[bool], axis: &Axis) -> DirectionEvidence {
     let d = axis.direction.into_inner();
     let samples: Vec<Sample> = (0..lines.len())

@@ -213,10 +213,10 @@ pub struct HalirOptions {
 impl Default for HalirOptions {
     fn default() -> Self {
         HalirOptions {
-            kind: ResidualKind::Algebraic,
+            kind: ResidualKind::Geometric,
             hemisphere_start_count: 12,
-            search_subsample: 500,
-            refine_subsample: 2500,
+            search_subsample: 400,
+            refine_subsample: 1500,
             candidates_refined: 3,
             m_step_rounds: 3,
         }

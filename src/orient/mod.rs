@@ -116,9 +116,11 @@ pub struct OrientReport {
     pub wall_thickness_mm: Option<f64>,
     /// Robust scale of the normal-line-to-axis residuals, millimetres.
     pub residual_scale_mm: f64,
-    /// The residual scale seen from the axis: `atan(residual / median radius)`, degrees,
-    /// i.e. by how much the normals typically miss the axis.
+    /// By how much the normals typically miss the axis, seen from it, degrees (see
+    /// [`verdict::axis_residual_angle_deg`]).
     pub residual_angle_deg: f64,
+    /// The same for the best common point of the normal lines (a sphere's centre).
+    pub sphere_residual_angle_deg: f64,
     /// Median distance of the kept points to the axis, millimetres.
     pub median_radius_mm: f64,
     /// Fraction of lines the M-step kept (non-zero weight).
@@ -208,7 +210,8 @@ pub fn orient_automatic(mesh: &Mesh, options: &OrientOptions) -> Result<Orientat
     let mut radii: Vec<f64> = lines.points.iter().map(|p| axis.distance_to(p)).collect();
     radii.sort_by(f64::total_cmp);
     report.median_radius_mm = radii[radii.len() / 2];
-    report.residual_angle_deg = (report.residual_scale_mm / report.median_radius_mm.max(1e-9)).atan().to_degrees();
+    report.residual_angle_deg = verdict::axis_residual_angle_deg(&lines, &axis, &inliers);
+    report.sphere_residual_angle_deg = verdict::sphere_residual_angle_deg(&lines, &inliers);
     lap("direction", &mut clock);
 
     let calibration = &options.thresholds;
@@ -276,12 +279,13 @@ fn working_copy(mesh: &Mesh, options: &OrientOptions) -> Result<Mesh> {
     // Quadric decimation to about two faces per wanted vertex, then Laplacian smoothing:
     // decoration and scan noise carry no information on the axis, and noisy normals bias
     // a least-squares axis (errors in the variables).
-    let mut working = if mesh.face_count() > 2 * options.target_vertex_count {
-        crate::mesh::decimate::decimate(mesh, 2 * options.target_vertex_count)?
-    } else {
-        mesh.clone()
-    };
-    if options.smoothing_iterations > 0 {
+    // A mesh already coarser than the target is not smoothed: its edges are long next to
+    // the wall thickness and smoothing would round the whole sherd (measured: rim pieces
+    // of 2 mm cells went 80 degrees wrong), while its normals are not noisy at that scale.
+    let decimated = mesh.face_count() > 2 * options.target_vertex_count;
+    let mut working =
+        if decimated { crate::mesh::decimate::decimate(mesh, 2 * options.target_vertex_count)? } else { mesh.clone() };
+    if decimated && options.smoothing_iterations > 0 {
         let smoothing = crate::mesh::smooth::SmoothOptions {
             iterations: options.smoothing_iterations,
             ..Default::default()

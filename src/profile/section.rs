@@ -187,17 +187,7 @@ pub fn most_informative_angle(mesh: &Mesh, axis: &Axis) -> f64 {
     let (low, high) = angular_extent(&oriented);
     const SAMPLES: usize = 96;
     let angles: Vec<f64> = (0..SAMPLES).map(|i| low + (high - low) * (i as f64 + 0.5) / SAMPLES as f64).collect();
-    let heights: Vec<f64> = angles
-        .par_iter()
-        .map(|&a| {
-            let segments = crossing_segments(mesh, &oriented, a);
-            let (lo, hi) = segments.iter().flat_map(|s| [s.ends[0].1, s.ends[1].1]).fold(
-                (f64::INFINITY, f64::NEG_INFINITY),
-                |(lo, hi), p| (lo.min(p[1]), hi.max(p[1])),
-            );
-            if hi >= lo { hi - lo } else { 0.0 }
-        })
-        .collect();
+    let heights = section_heights(mesh, &oriented, low, high, SAMPLES);
     let best = heights.iter().copied().fold(0.0, f64::max);
     if best <= 0.0 {
         return 0.0;
@@ -218,6 +208,52 @@ pub fn most_informative_angle(mesh: &Mesh, axis: &Axis) -> f64 {
         }
     }
     angles[(best_run.0 + best_run.1 - 1) / 2]
+}
+
+/// Height (z extent) of the sections at `samples` angles evenly spread over
+/// `[low, high]`, in one pass over the triangles: each triangle adds its z range to the
+/// few angles its angular range spans (usually none or one), instead of cutting the whole
+/// mesh once per angle. The z range of a crossing triangle bounds its cut segment's, so
+/// heights are over-estimated by at most one triangle's size.
+fn section_heights(mesh: &Mesh, oriented: &[Point], low: f64, high: f64, samples: usize) -> Vec<f64> {
+    use std::f64::consts::{PI, TAU};
+    let step = (high - low) / samples as f64;
+    let wraps = high - low >= TAU - 1e-9;
+    let theta: Vec<f64> = oriented.par_iter().map(|p| p.y.atan2(p.x)).collect();
+    let empty = || vec![(f64::INFINITY, f64::NEG_INFINITY); samples];
+    let ranges = mesh
+        .triangles
+        .par_iter()
+        .fold(empty, |mut ranges, tri| {
+            let t0 = theta[tri[0] as usize];
+            // Unwrap the corners' angles next to the first one.
+            let unwrap = |t: f64| t0 + (t - t0 + PI).rem_euclid(TAU) - PI;
+            let (t1, t2) = (unwrap(theta[tri[1] as usize]), unwrap(theta[tri[2] as usize]));
+            let (t_min, t_max) = (t0.min(t1).min(t2), t0.max(t1).max(t2));
+            if t_max - t_min > PI / 2.0 {
+                return ranges; // straddles the axis: its angles mean nothing
+            }
+            let zs = tri.map(|v| oriented[v as usize].z);
+            let (z_min, z_max) = (zs[0].min(zs[1]).min(zs[2]), zs[0].max(zs[1]).max(zs[2]));
+            // Sample i sits at low + (i + 0.5) step; try the span and, when the fragment
+            // wraps round, the span shifted by a turn.
+            for shift in if wraps { [-TAU, 0.0, TAU].as_slice() } else { [0.0].as_slice() } {
+                let first = ((t_min + shift - low) / step - 0.5).ceil().max(0.0) as i64;
+                let last = (((t_max + shift - low) / step - 0.5).floor() as i64).min(samples as i64 - 1);
+                for i in first..=last {
+                    let r = &mut ranges[i as usize];
+                    *r = (r.0.min(z_min), r.1.max(z_max));
+                }
+            }
+            ranges
+        })
+        .reduce(empty, |mut a, b| {
+            for (x, y) in a.iter_mut().zip(b) {
+                *x = (x.0.min(y.0), x.1.max(y.1));
+            }
+            a
+        });
+    ranges.iter().map(|&(lo, hi)| if hi >= lo { hi - lo } else { 0.0 }).collect()
 }
 
 /// Angular range `(low, high)` covered by the oriented vertices, radians around 0 (the

@@ -5,6 +5,7 @@
 #
 #   bash tests/c/run.sh                  # release library (as tests/run_all.sh builds it)
 #   SHERD_PROFILE=debug bash tests/c/run.sh
+#   SHERD_C_TESTS="test_files test_wrapper" bash tests/c/run.sh   # only these programs
 #
 # Without valgrind the programs are built with AddressSanitizer instead (also leak checking).
 set -euo pipefail
@@ -45,6 +46,7 @@ failed=0
 for source in tests/c/*.c tests/cpp/*.cpp; do
   [ -e "$source" ] || continue
   name=$(basename "${source%.*}")
+  if [ -n "${SHERD_C_TESTS:-}" ] && [[ " $SHERD_C_TESTS " != *" $name "* ]]; then continue; fi
   for linkage in shared static; do
     if [ "$linkage" = shared ]; then libs=$shared_libs; else libs=$static_libs; fi
     binary="$work/$name-$linkage"

@@ -73,6 +73,34 @@ static void test_oriented_export(void) {
     sherd_mesh_free(mesh);
 }
 
+static void test_reconstruction(void) {
+    SherdMesh *mesh = wall_mesh();
+    SherdAxis axis = wall_axis();
+    double *positions;
+    size_t count, i, inner = 0, outer = 0;
+
+    CHECK_OK(sherd_export_reconstruction_ply(mesh, &axis, NAN, 36, "reconstruction.ply", false));
+    positions = read_back_positions("reconstruction.ply", &count);
+    /* The whole ring: the section's rectangle turned a full turn, both skins present. */
+    for (i = 0; i < count; ++i) {
+        const double *p = positions + 3 * i;
+        double radius = sqrt(p[0] * p[0] + p[1] * p[1]);
+        CHECK(radius > 45.0 - 0.02 && radius < 50.0 + 1e-3 && p[2] > -1e-3 && p[2] < 40.0 + 1e-3);
+        if (radius < 46.0) ++inner;
+        if (radius > 49.0) ++outer;
+    }
+    CHECK(inner >= 36 && outer >= 36);
+    free(positions);
+    remove("reconstruction.ply");
+    CHECK_STATUS(sherd_export_reconstruction_ply(mesh, &axis, NAN, 2, "reconstruction.ply", false),
+                 SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("at least 3 segments");
+    CHECK_STATUS(sherd_export_reconstruction_ply(mesh, &axis, 2.0, 0, "reconstruction.ply", false),
+                 SHERD_STATUS_DEGENERATE_GEOMETRY);
+    CHECK_STATUS(sherd_export_reconstruction_ply(mesh, &axis, NAN, 0, NULL, false), SHERD_STATUS_NULL_POINTER);
+    sherd_mesh_free(mesh);
+}
+
 static void test_profile_csv(void) {
     SherdMesh *mesh = wall_mesh();
     SherdAxis axis = wall_axis();
@@ -171,6 +199,7 @@ static void test_null_arguments(void) {
 int main(void) {
     test_ply_round_trip();
     test_oriented_export();
+    test_reconstruction();
     test_profile_csv();
     test_read_errors();
     test_null_arguments();

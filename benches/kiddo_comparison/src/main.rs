@@ -2,6 +2,7 @@
 //! 500k-face benchmark torus's 250k vertices; the same spatial.rs is compiled in.
 //!
 //!     cd benches/kiddo_comparison && cargo run --release
+//!     cargo run --release -- --bvh     # only: time three BVH builds of the torus
 // spatial.rs refers to `super::{Mesh, Point, Vector}`: the crate root stands in for
 // sherd's mesh module with the little it uses.
 pub type Point = nalgebra::Point3<f64>;
@@ -22,6 +23,24 @@ mod spatial;
 use kiddo::{KdTree, SquaredEuclidean};
 use std::time::Instant;
 
+fn bvh_only(points: &[Point]) {
+    let (around, across) = (1000usize, 250usize);
+    let index = |i: usize, j: usize| ((i % around) * across + (j % across)) as u32;
+    let mut triangles = Vec::new();
+    for i in 0..around {
+        for j in 0..across {
+            triangles.push([index(i, j), index(i + 1, j), index(i + 1, j + 1)]);
+            triangles.push([index(i, j), index(i + 1, j + 1), index(i, j + 1)]);
+        }
+    }
+    let mesh = Mesh { positions: points.to_vec(), triangles };
+    for _ in 0..3 {
+        let t = Instant::now();
+        let bvh = spatial::Bvh::new(&mesh);
+        println!("bvh build {:?} ({} triangles)", t.elapsed(), bvh.triangle_count());
+    }
+}
+
 fn main() {
     let (around, across) = (1000usize, 250usize);
     let mut points = Vec::new();
@@ -32,6 +51,10 @@ fn main() {
             let r = 30.0 * (1.0 + 0.05 * (7.0 * u).sin() * (5.0 * v).cos());
             points.push(Point::new((100.0 + r * v.cos()) * u.cos(), (100.0 + r * v.cos()) * u.sin(), r * v.sin()));
         }
+    }
+    if std::env::args().any(|a| a == "--bvh") {
+        bvh_only(&points);
+        return;
     }
     let queries: Vec<Point> = points.iter().map(|p| p + nalgebra::Vector3::new(0.1, -0.05, 0.07)).collect();
     let arrays: Vec<[f64; 3]> = points.iter().map(|p| [p.x, p.y, p.z]).collect();

@@ -22,9 +22,12 @@ from .errors import (
     Status,
     last_error_message,
 )
-from .export import export_oriented_ply, export_profile_csv, most_informative_angle, profile_csv, profile_section
+from .draw import Drawing
+from .export import (export_oriented_ply, export_profile_csv, export_reconstruction_ply, most_informative_angle,
+                     profile_csv, profile_section)
 from .mesh import Attribute, Mesh
-from .pipeline import Orientation, orient_automatic, orient_from_three_points, synthetic_sherd
+from .pipeline import (Measurements, Orientation, Refinement, measure, orient_automatic, orient_from_three_points,
+                       refine, synthetic_sherd)
 
 if lib.sherd_abi_version() != ABI_VERSION:
     raise ImportError(
@@ -34,9 +37,10 @@ if lib.sherd_abi_version() != ABI_VERSION:
 __version__ = lib.sherd_version().decode()
 
 __all__ = [
-    "Attribute", "Axis", "BufferTooSmallError", "DegenerateGeometryError", "InvalidArgumentError", "Mesh",
+    "Attribute", "Axis", "Drawing", "BufferTooSmallError", "DegenerateGeometryError", "InvalidArgumentError", "Mesh",
     "NeedsManualOrientationError", "NotAvailableError", "NotConvergedError", "NullPointerError", "PanicError",
     "ParseError", "SherdError", "SherdIOError", "Status", "export_oriented_ply", "export_profile_csv",
+    "export_reconstruction_ply", "Measurements", "measure", "Refinement", "refine",
     "last_error_message", "most_informative_angle", "orient_automatic", "orient_from_three_points", "Orientation",
     "oriented_transform", "profile_csv", "profile_section", "synthetic_sherd",
 ]

@@ -163,3 +163,98 @@ _declare("sherd_orient_automatic", Status, SherdMesh_p, SherdOptions_p, SherdAxi
          ctypes.POINTER(SherdOrientReport), ctypes.POINTER(SherdBuffer_p))
 _declare("sherd_orient_from_three_points", Status, SherdMesh_p, c_double_p, SherdOptions_p, SherdAxis_p,
          ctypes.POINTER(SherdOrientReport), ctypes.POINTER(SherdBuffer_p))
+
+
+class SherdRefinement(ctypes.Structure):
+    """Opaque handle."""
+
+
+class SherdRefineReport(ctypes.Structure):
+    _fields_ = [
+        ("size", ctypes.c_size_t),
+        ("criterion", ctypes.c_uint32),
+        ("surface", ctypes.c_uint32),
+        ("iterations", ctypes.c_uint64),
+        ("start_residual_mm", ctypes.c_double),
+        ("residual_mm", ctypes.c_double),
+        ("tilt_deg", ctypes.c_double),
+        ("shift_mm", ctypes.c_double),
+        ("section_count", ctypes.c_size_t),
+        ("pareto_point_count", ctypes.c_size_t),
+    ]
+
+
+class SherdParetoPoint(ctypes.Structure):
+    _fields_ = [
+        ("tilt_x_deg", ctypes.c_double),
+        ("tilt_y_deg", ctypes.c_double),
+        ("centre_dispersion_mm2", ctypes.c_double),
+        ("circle_residual_mm2", ctypes.c_double),
+    ]
+
+
+class SherdMeasurements(ctypes.Structure):
+    _fields_ = [
+        ("size", ctypes.c_size_t),
+        ("rim_radius_mm", ctypes.c_double),
+        ("rim_diameter_mm", ctypes.c_double),
+        ("rim_diameter_interval_mm", ctypes.c_double * 2),
+        ("base_radius_mm", ctypes.c_double),
+        ("base_diameter_mm", ctypes.c_double),
+        ("base_diameter_interval_mm", ctypes.c_double * 2),
+        ("sector_angle_deg", ctypes.c_double),
+        ("sector_percent", ctypes.c_double),
+        ("height_mm", ctypes.c_double),
+        ("wall_thickness_mm", ctypes.c_double),
+        ("capacity_litres", ctypes.c_double),
+        ("axis_angle_interval_deg", ctypes.c_double * 2),
+    ]
+
+
+SherdRefinement_p = ctypes.POINTER(SherdRefinement)
+
+for _builder in ("refine", "measure"):
+    _declare(f"sherd_{_builder}_options_new", Status, ctypes.POINTER(SherdOptions_p))
+    _declare(f"sherd_{_builder}_options_free", None, SherdOptions_p)
+_declare("sherd_refine_options_set_criterion", Status, SherdOptions_p, ctypes.c_uint32)
+_declare("sherd_refine_options_set_surface", Status, SherdOptions_p, ctypes.c_uint32)
+_declare("sherd_refine_options_set_section_count", Status, SherdOptions_p, ctypes.c_size_t)
+_declare("sherd_refine_options_set_search_bound_deg", Status, SherdOptions_p, ctypes.c_double)
+_declare("sherd_measure_options_set_refine_options", Status, SherdOptions_p, SherdOptions_p)
+_declare("sherd_measure_options_set_bootstrap_samples", Status, SherdOptions_p, ctypes.c_size_t)
+_declare("sherd_measure_options_set_bootstrap_seed", Status, SherdOptions_p, ctypes.c_uint64)
+_declare("sherd_measure_options_set_confidence", Status, SherdOptions_p, ctypes.c_double)
+
+_declare("sherd_refine", Status, SherdMesh_p, SherdAxis_p, SherdOptions_p, ctypes.POINTER(SherdRefinement_p))
+_declare("sherd_refinement_axis", Status, SherdRefinement_p, SherdAxis_p)
+_declare("sherd_refinement_report", Status, SherdRefinement_p, ctypes.POINTER(SherdRefineReport))
+_declare("sherd_refinement_report_json", Status, SherdRefinement_p, ctypes.POINTER(SherdBuffer_p))
+_declare("sherd_refinement_pareto_front", Status, SherdRefinement_p, ctypes.POINTER(SherdParetoPoint),
+         ctypes.c_size_t, c_size_t_p)
+_declare("sherd_refinement_free", None, SherdRefinement_p)
+_declare("sherd_measure", Status, SherdMesh_p, SherdAxis_p, SherdOptions_p, ctypes.POINTER(SherdMeasurements),
+         ctypes.POINTER(SherdBuffer_p))
+_declare("sherd_export_reconstruction_ply", Status, SherdMesh_p, SherdAxis_p, ctypes.c_double, ctypes.c_size_t,
+         ctypes.c_char_p, ctypes.c_bool)
+
+
+class SherdDrawing(ctypes.Structure):
+    """Opaque handle."""
+
+
+SherdDrawing_p = ctypes.POINTER(SherdDrawing)
+
+_declare("sherd_draw_options_new", Status, ctypes.POINTER(SherdOptions_p))
+_declare("sherd_draw_options_free", None, SherdOptions_p)
+_declare("sherd_draw_options_set_style", Status, SherdOptions_p, ctypes.c_uint32)
+_declare("sherd_draw_options_set_scale_denominator", Status, SherdOptions_p, ctypes.c_uint32)
+_declare("sherd_draw_options_set_dpi", Status, SherdOptions_p, ctypes.c_double)
+_declare("sherd_draw_options_set_section_angle_rad", Status, SherdOptions_p, ctypes.c_double)
+_declare("sherd_draw_options_set_section_fill", Status, SherdOptions_p, ctypes.c_uint32)
+_declare("sherd_draw_options_set_placement", Status, SherdOptions_p, ctypes.c_uint32)
+_declare("sherd_draw_options_set_regularity", Status, SherdOptions_p, ctypes.c_uint32)
+_declare("sherd_draw_options_set_title", Status, SherdOptions_p, ctypes.c_char_p)
+_declare("sherd_drawing_build", Status, SherdMesh_p, SherdAxis_p, SherdOptions_p, ctypes.POINTER(SherdDrawing_p))
+_declare("sherd_drawing_write", Status, SherdDrawing_p, ctypes.c_char_p)
+_declare("sherd_drawing_to_buffer", Status, SherdDrawing_p, ctypes.c_uint32, ctypes.POINTER(SherdBuffer_p))
+_declare("sherd_drawing_free", None, SherdDrawing_p)

@@ -50,3 +50,12 @@ def export_profile_csv(mesh, axis, path, angle_rad=None):
     c_axis = axis.to_c()
     angle = math.nan if angle_rad is None else float(angle_rad)
     check(c.lib.sherd_export_profile_csv(mesh.handle, ctypes.byref(c_axis), angle, os.fsencode(path)))
+
+
+def export_reconstruction_ply(mesh, axis, path, angle_rad=None, segments=0, binary=True):
+    """Writes the 3D reconstruction (the profile revolved about the axis) as PLY;
+    ``segments`` 0 takes the library's default (180)."""
+    c_axis = axis.to_c()
+    angle = math.nan if angle_rad is None else float(angle_rad)
+    check(c.lib.sherd_export_reconstruction_ply(mesh.handle, ctypes.byref(c_axis), angle, int(segments),
+                                                os.fsencode(path), bool(binary)))

@@ -1,4 +1,4 @@
-"""The pipeline over the C ABI: synthetic sherds, orientation, refinement."""
+"""The pipeline over the C ABI: synthetic sherds, orientation, refinement, measurements."""
 
 import ctypes
 from dataclasses import dataclass, field
@@ -14,6 +14,10 @@ from .options import Options, enum_value, take_buffer, take_json
 
 SYNTH_KINDS = {"random": 0, "rim": 1, "body": 2, "base": 3, "rim_to_base": 4, "flat_base": 5,
                "near_spherical": 6, "tiny": 7}
+CRITERIA = {"circles": 0, "pareto": 1, "profile": 2, "tangent": 3, "auto": 4}
+SURFACES = {"inner": 0, "outer": 1, "both": 2}
+_CRITERION_NAMES = {v: k for k, v in CRITERIA.items()}
+_SURFACE_NAMES = {v: k for k, v in SURFACES.items()}
 
 
 def synthetic_sherd(seed, kind="random", target_faces=0, noise_mm=0.02):
@@ -92,3 +96,105 @@ def orient_from_three_points(mesh, points, *, keep_fraction=None, max_pick_dista
                                                       ctypes.byref(axis), ctypes.byref(summary),
                                                       ctypes.byref(report))
     return _orientation(status, axis, summary, report)
+
+
+@dataclass
+class Refinement:
+    """A refined axis, the criterion and surface used, the residuals, the full report and
+    the Pareto front as an (n, 4) array of ``tilt_x_deg, tilt_y_deg,
+    centre_dispersion_mm2, circle_residual_mm2`` (empty unless the criterion is Pareto)."""
+
+    axis: Axis
+    criterion: str
+    surface: str
+    iterations: int
+    start_residual_mm: float
+    residual_mm: float
+    tilt_deg: float
+    shift_mm: float
+    section_count: int
+    pareto_front: np.ndarray
+    report: dict
+
+
+def _refine_options(criterion="auto", surface="both", section_count=0, search_bound_deg=None):
+    setters = {
+        "criterion": ("sherd_refine_options_set_criterion", lambda v: enum_value(CRITERIA, v, "criterion")),
+        "surface": ("sherd_refine_options_set_surface", lambda v: enum_value(SURFACES, v, "surface")),
+        "section_count": ("sherd_refine_options_set_section_count", int),
+        "search_bound_deg": ("sherd_refine_options_set_search_bound_deg", float),
+    }
+    values = dict(criterion=criterion, surface=surface, section_count=section_count,
+                  search_bound_deg=search_bound_deg)
+    return Options("refine", values, setters)
+
+
+def refine(mesh, axis, *, criterion="auto", surface="both", section_count=0, search_bound_deg=None):
+    """Refines ``axis`` on ``mesh`` (the paper's section 2.3)."""
+    handle = c.SherdRefinement_p()
+    c_axis = axis.to_c()
+    with _refine_options(criterion, surface, section_count, search_bound_deg) as options:
+        check(c.lib.sherd_refine(mesh.handle, ctypes.byref(c_axis), options, ctypes.byref(handle)))
+    try:
+        refined, summary, report = c.SherdAxis(), c.SherdRefineReport(), c.SherdBuffer_p()
+        refined.size = ctypes.sizeof(c.SherdAxis)
+        summary.size = ctypes.sizeof(c.SherdRefineReport)
+        check(c.lib.sherd_refinement_axis(handle, ctypes.byref(refined)))
+        check(c.lib.sherd_refinement_report(handle, ctypes.byref(summary)))
+        check(c.lib.sherd_refinement_report_json(handle, ctypes.byref(report)))
+        count = ctypes.c_size_t()
+        points = (c.SherdParetoPoint * max(summary.pareto_point_count, 1))()
+        check(c.lib.sherd_refinement_pareto_front(handle, points, summary.pareto_point_count, ctypes.byref(count)))
+        front = np.array([[p.tilt_x_deg, p.tilt_y_deg, p.centre_dispersion_mm2, p.circle_residual_mm2]
+                          for p in points[:count.value]], dtype=np.float64).reshape(-1, 4)
+        return Refinement(Axis.from_c(refined), _CRITERION_NAMES.get(summary.criterion, str(summary.criterion)),
+                          _SURFACE_NAMES.get(summary.surface, str(summary.surface)), summary.iterations,
+                          summary.start_residual_mm, summary.residual_mm, summary.tilt_deg, summary.shift_mm,
+                          summary.section_count, front, take_json(report))
+    finally:
+        c.lib.sherd_refinement_free(handle)
+
+
+@dataclass
+class Measurements:
+    """Measurements of an oriented fragment (mm, degrees, litres); NaN where the fragment
+    does not determine a figure; intervals as (low, high). ``details`` holds everything
+    as the library reports it (wall thickness along the profile, notes)."""
+
+    rim_radius_mm: float
+    rim_diameter_mm: float
+    rim_diameter_interval_mm: tuple
+    base_radius_mm: float
+    base_diameter_mm: float
+    base_diameter_interval_mm: tuple
+    sector_angle_deg: float
+    sector_percent: float
+    height_mm: float
+    wall_thickness_mm: float
+    capacity_litres: float
+    axis_angle_interval_deg: tuple
+    details: dict
+
+
+def measure(mesh, axis, *, bootstrap_samples=None, bootstrap_seed=None, confidence=None, refine_options=None):
+    """Measures ``mesh`` oriented by ``axis``; ``refine_options`` (a dict of
+    :func:`refine`'s keywords) is the refinement the intervals' bootstrap repeats."""
+    setters = {
+        "bootstrap_samples": ("sherd_measure_options_set_bootstrap_samples", int),
+        "bootstrap_seed": ("sherd_measure_options_set_bootstrap_seed", int),
+        "confidence": ("sherd_measure_options_set_confidence", float),
+    }
+    values = dict(bootstrap_samples=bootstrap_samples, bootstrap_seed=bootstrap_seed, confidence=confidence)
+    out, details = c.SherdMeasurements(), c.SherdBuffer_p()
+    out.size = ctypes.sizeof(c.SherdMeasurements)
+    c_axis = axis.to_c()
+    with Options("measure", values, setters) as options:
+        if refine_options is not None:
+            with _refine_options(**refine_options) as refine_handle:
+                check(c.lib.sherd_measure_options_set_refine_options(options, refine_handle))
+        check(c.lib.sherd_measure(mesh.handle, ctypes.byref(c_axis), options, ctypes.byref(out),
+                                  ctypes.byref(details)))
+    return Measurements(out.rim_radius_mm, out.rim_diameter_mm, tuple(out.rim_diameter_interval_mm),
+                        out.base_radius_mm, out.base_diameter_mm, tuple(out.base_diameter_interval_mm),
+                        out.sector_angle_deg, out.sector_percent, out.height_mm, out.wall_thickness_mm,
+                        out.capacity_litres, tuple(out.axis_angle_interval_deg), take_json(details))

@@ -54,23 +54,18 @@ struct BoundingBox {
 }
 
 pub fn run(arguments: &InfoArgs) -> Result<()> {
-    let (mesh, read) = read_mesh_with_report(&arguments.scan)?;
     if let Some(tolerance) = arguments.merge_tolerance_mm {
         if !(tolerance.is_finite() && tolerance >= 0.0) {
             return Err(sherd::Error::InvalidArgument(format!("--merge-tolerance-mm must be a non-negative distance, not {tolerance}")));
         }
     }
-    let mut repaired = mesh.clone();
-    let repair_report = repair(
-        &mut repaired,
-        &RepairOptions { merge_tolerance_mm: arguments.merge_tolerance_mm, keep_largest_component: arguments.keep_largest_component },
-    );
+    let (mut mesh, read) = read_mesh_with_report(&arguments.scan)?;
     let bounding_box = mesh.bounding_box().map(|(low, high)| BoundingBox {
         min: low.coords.into(),
         max: high.coords.into(),
         size: (high - low).into(),
     });
-    let info = Info {
+    let mut info = Info {
         file: arguments.scan.display().to_string(),
         format: read.format.clone(),
         vertex_count: mesh.vertex_count(),
@@ -83,10 +78,16 @@ pub fn run(arguments: &InfoArgs) -> Result<()> {
         has_quality: mesh.quality.is_some(),
         has_texture_coordinates: mesh.corner_uvs.is_some(),
         texture_size: mesh.texture.as_ref().map(|t| [t.width, t.height]),
-        watertight: (!mesh.is_point_cloud()).then_some(repair_report.watertight),
+        watertight: None,
         read,
-        repair: repair_report,
+        repair: RepairReport::default(),
     };
+    // Described as read; repaired in place afterwards (no copy of a 500k-face scan).
+    info.repair = repair(
+        &mut mesh,
+        &RepairOptions { merge_tolerance_mm: arguments.merge_tolerance_mm, keep_largest_component: arguments.keep_largest_component },
+    );
+    info.watertight = (!info.point_cloud).then_some(info.repair.watertight);
     if arguments.json {
         println!("{}", serde_json::to_string_pretty(&info).expect("the report is plain data"));
     } else {

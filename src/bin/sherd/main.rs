@@ -3,7 +3,13 @@
 //! algorithm lives here, only argument parsing, calls into the library and output.
 //! Errors go to stderr with exit code 1 (2 for bad arguments, from clap).
 
+mod batch;
+mod common;
+mod demo;
+mod draw;
+mod export;
 mod info;
+mod orient;
 mod synth;
 
 use std::process::ExitCode;
@@ -24,16 +30,32 @@ enum Command {
     Info(info::InfoArgs),
     /// Write synthetic sherds with known axes (NAME.ply + NAME.truth.json).
     Synth(synth::SynthArgs),
+    /// Find the rotation axis, rim/base diameter and preserved sector of a sherd.
+    Orient(orient::OrientArgs),
+    /// Draw a sherd as an archaeological illustration (SVG, EPS, PDF, PNG).
+    Draw(draw::DrawArgs),
+    /// Write the oriented model, the reconstruction by revolution, the profile, the regularity map.
+    Export(export::ExportArgs),
+    /// Orient, measure and draw every scan of a folder, in parallel, with a report.
+    Batch(batch::BatchArgs),
+    /// Make a synthetic sherd, orient, measure and draw it (demo.svg, demo.png).
+    Demo(demo::DemoArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    let library = |result: sherd::Result<()>| result.map(|()| ExitCode::SUCCESS).map_err(|e| e.to_string());
     let result = match cli.command {
-        Command::Info(arguments) => info::run(&arguments),
-        Command::Synth(arguments) => synth::run(&arguments),
+        Command::Info(arguments) => library(info::run(&arguments)),
+        Command::Synth(arguments) => library(synth::run(&arguments)),
+        Command::Orient(arguments) => orient::run(arguments),
+        Command::Draw(arguments) => draw::run(arguments),
+        Command::Export(arguments) => export::run(arguments),
+        Command::Batch(arguments) => batch::run(arguments),
+        Command::Demo(arguments) => demo::run(arguments),
     };
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(code) => code,
         Err(error) => {
             eprintln!("sherd: {error}");
             ExitCode::FAILURE

@@ -1,0 +1,287 @@
+"""The operators of the Sherd panel. They hold no algorithm: the active mesh goes to the
+sherd library as arrays (world transform applied, so results are in world coordinates),
+the results come back as custom properties on the object (``sherd_*``) and as its new
+transform. Library errors become Blender reports and ``{'CANCELLED'}``."""
+
+import contextlib
+import math
+
+import bpy
+import numpy as np
+from mathutils import Matrix, Vector
+
+from .library import LibraryMissingError, is_sherd_error, sherd
+
+AXIS_POINT = "sherd_axis_point"
+AXIS_DIRECTION = "sherd_axis_direction"
+AXIS_SOURCE = "sherd_axis_source"
+MEASUREMENT_KEYS = {
+    "rim_diameter_mm": "sherd_rim_diameter_mm",
+    "rim_diameter_interval_mm": "sherd_rim_diameter_interval_mm",
+    "sector_angle_deg": "sherd_sector_angle_deg",
+    "height_mm": "sherd_height_mm",
+    "capacity_litres": "sherd_capacity_litres",
+}
+
+CRITERION_ITEMS = [
+    ("auto", "Auto", "Let the library choose the criterion"),
+    ("circles", "Circles", "Concentric circles fitted to horizontal sections"),
+    ("pareto", "Pareto", "Pareto front of centre dispersion and circle residual"),
+    ("profile", "Profile", "Agreement of profile sections"),
+    ("tangent", "Tangent", "Tangent planes"),
+]
+SURFACE_ITEMS = [
+    ("both", "Both", "Inner and outer surface"),
+    ("outer", "Outer", "Outer surface only"),
+    ("inner", "Inner", "Inner surface only"),
+]
+
+
+class InputError(Exception):
+    """The selection or the object cannot be used (reported, never raised to Blender)."""
+
+
+def active_mesh_object(context):
+    """The active object if it is a mesh, else :class:`InputError`."""
+    obj = context.active_object
+    if obj is None:
+        raise InputError("no active object")
+    if obj.type != 'MESH':
+        raise InputError(f"the active object {obj.name!r} is a {obj.type.lower()}, not a mesh")
+    return obj
+
+
+def world_arrays(obj):
+    """(positions (n, 3) float64 in world coordinates, triangles (m, 3), selected (n,) bool)
+    of a mesh object, read with ``foreach_get`` (the edit-mode state included)."""
+    if obj.mode == 'EDIT':
+        obj.update_from_editmode()
+    data = obj.data
+    count = len(data.vertices)
+    if count == 0:
+        raise InputError(f"the mesh {obj.name!r} has no vertices")
+    local = np.empty(count * 3, dtype=np.float32)
+    data.vertices.foreach_get("co", local)
+    selected = np.empty(count, dtype=bool)
+    data.vertices.foreach_get("select", selected)
+    data.calc_loop_triangles()
+    triangles = np.empty(len(data.loop_triangles) * 3, dtype=np.int32)
+    data.loop_triangles.foreach_get("vertices", triangles)
+    if len(triangles) == 0:
+        raise InputError(f"the mesh {obj.name!r} has no faces")
+    matrix = np.array(obj.matrix_world, dtype=np.float64)
+    positions = local.reshape(-1, 3).astype(np.float64) @ matrix[:3, :3].T + matrix[:3, 3]
+    return positions, triangles.reshape(-1, 3), selected
+
+
+def library_mesh(obj):
+    """The object's mesh as a ``sherd.Mesh`` in world coordinates, and the selection mask."""
+    positions, triangles, selected = world_arrays(obj)
+    return sherd().Mesh.from_arrays(positions, triangles), selected
+
+
+def stored_axis(obj):
+    """The axis stored on the object by an orientation, else :class:`InputError`."""
+    if AXIS_POINT not in obj or AXIS_DIRECTION not in obj:
+        raise InputError(f"{obj.name!r} has no axis yet: orient it first")
+    return sherd().Axis(list(obj[AXIS_POINT]), list(obj[AXIS_DIRECTION]))
+
+
+def store_axis(obj, axis, source):
+    obj[AXIS_POINT] = [float(v) for v in axis.point]
+    obj[AXIS_DIRECTION] = [float(v) for v in axis.direction]
+    obj[AXIS_SOURCE] = source
+
+
+@contextlib.contextmanager
+def progress(context, steps):
+    """Blender's progress indicator around a long call; yields ``update(step)``."""
+    window_manager = context.window_manager
+    window_manager.progress_begin(0, steps)
+    try:
+        yield window_manager.progress_update
+    finally:
+        window_manager.progress_end()
+
+
+#: The reports of the Sherd operators, newest last, as ``(types, message)`` (Blender
+#: gives scripts no access to an operator's reports; tests and scripts read them here).
+REPORTS = []
+
+
+class SherdOperator:
+    """Runs :meth:`run` and turns every expected failure into a report."""
+
+    bl_options = {'REGISTER', 'UNDO'}
+
+    def report(self, types, message):
+        REPORTS.append((set(types), message))
+        del REPORTS[:-100]
+        super().report(types, message)
+
+    @classmethod
+    def poll(cls, context):
+        # Deliberately permissive: a wrong object is reported by execute, with the reason.
+        return context.active_object is not None
+
+    def execute(self, context):
+        try:
+            return self.run(context)
+        except InputError as error:
+            self.report({'ERROR'}, str(error))
+        except LibraryMissingError as error:
+            self.report({'ERROR'}, str(error))
+        except Exception as error:  # noqa: BLE001 - only sherd's own errors are reported, others re-raised
+            if not is_sherd_error(error):
+                raise
+            self.report({'ERROR'}, f"sherd: {error}")
+        return {'CANCELLED'}
+
+
+def _finish_orientation(operator, obj, orientation, source):
+    if not orientation.oriented:
+        operator.report({'WARNING'}, f"needs manual orientation: {orientation.reason}")
+        return {'CANCELLED'}
+    store_axis(obj, orientation.axis, source)
+    obj["sherd_angle_uncertainty_deg"] = float(orientation.angle_uncertainty_deg)
+    operator.report({'INFO'}, f"oriented ({source}), uncertainty {orientation.angle_uncertainty_deg:.2f} deg")
+    return {'FINISHED'}
+
+
+class SHERD_OT_orient_automatic(SherdOperator, bpy.types.Operator):
+    """Find the rotation axis from the surface normals (the automatic method)"""
+
+    bl_idname = "sherd.orient_automatic"
+    bl_label = "Orient"
+
+    def run(self, context):
+        obj = active_mesh_object(context)
+        with progress(context, 2) as update:
+            mesh, _ = library_mesh(obj)
+            update(1)
+            orientation = sherd().orient_automatic(mesh)
+        return _finish_orientation(self, obj, orientation, "automatic")
+
+
+class SHERD_OT_orient_three_points(SherdOperator, bpy.types.Operator):
+    """Find the axis from three vertices selected in Edit Mode on one horizontal feature
+    (rim edge, groove, base edge)"""
+
+    bl_idname = "sherd.orient_three_points"
+    bl_label = "Orient from 3 vertices"
+
+    def run(self, context):
+        obj = active_mesh_object(context)
+        with progress(context, 2) as update:
+            mesh, selected = library_mesh(obj)
+            count = int(selected.sum())
+            if count != 3:
+                raise InputError(f"select exactly 3 vertices in Edit Mode ({count} selected)")
+            update(1)
+            points = mesh.positions[selected]
+            orientation = sherd().orient_from_three_points(mesh, points)
+        return _finish_orientation(self, obj, orientation, "three points")
+
+
+class SHERD_OT_refine(SherdOperator, bpy.types.Operator):
+    """Refine the stored axis with the chosen criterion and surface"""
+
+    bl_idname = "sherd.refine"
+    bl_label = "Refine"
+
+    criterion: bpy.props.EnumProperty(name="Criterion", items=CRITERION_ITEMS, default="auto")
+    surface: bpy.props.EnumProperty(name="Surface", items=SURFACE_ITEMS, default="both")
+
+    def run(self, context):
+        obj = active_mesh_object(context)
+        axis = stored_axis(obj)
+        with progress(context, 2) as update:
+            mesh, _ = library_mesh(obj)
+            update(1)
+            refinement = sherd().refine(mesh, axis, criterion=self.criterion, surface=self.surface)
+        store_axis(obj, refinement.axis, f"refined ({refinement.criterion}, {refinement.surface})")
+        obj["sherd_refine_residual_mm"] = float(refinement.residual_mm)
+        obj["sherd_refine_tilt_deg"] = float(refinement.tilt_deg)
+        obj["sherd_pareto_point_count"] = len(refinement.pareto_front)
+        self.report({'INFO'}, f"refined: tilt {refinement.tilt_deg:.2f} deg, residual {refinement.residual_mm:.3f} mm")
+        return {'FINISHED'}
+
+
+def _is_number(value):
+    return isinstance(value, (int, float)) and math.isfinite(value)
+
+
+class SHERD_OT_measure(SherdOperator, bpy.types.Operator):
+    """Measure the oriented sherd: rim diameter with interval, sector angle, height,
+    capacity (stored as custom properties)"""
+
+    bl_idname = "sherd.measure"
+    bl_label = "Measure"
+
+    def run(self, context):
+        obj = active_mesh_object(context)
+        axis = stored_axis(obj)
+        with progress(context, 2) as update:
+            mesh, _ = library_mesh(obj)
+            update(1)
+            measurements = sherd().measure(mesh, axis)
+        for field, key in MEASUREMENT_KEYS.items():
+            value = getattr(measurements, field)
+            # A figure the fragment does not determine (NaN) is removed, not stored as a number.
+            if isinstance(value, tuple):
+                value = [float(v) for v in value]
+                known = all(_is_number(v) for v in value)
+            else:
+                value = float(value)
+                known = _is_number(value)
+            if known:
+                obj[key] = value
+            elif key in obj:
+                del obj[key]
+        self.report({'INFO'}, "measured")
+        return {'FINISHED'}
+
+
+class SHERD_OT_apply_orientation(SherdOperator, bpy.types.Operator):
+    """Move the object so its axis is on Z, rim up (the object's transform; the mesh
+    data are unchanged)"""
+
+    bl_idname = "sherd.apply_orientation"
+    bl_label = "Apply orientation"
+
+    def run(self, context):
+        obj = active_mesh_object(context)
+        axis = stored_axis(obj)
+        mesh, _ = library_mesh(obj)
+        transform = mesh.oriented_transform(axis)
+        obj.matrix_world = Matrix(transform.tolist()) @ obj.matrix_world
+        rotation, translation = transform[:3, :3], transform[:3, 3]
+        moved = sherd().Axis(rotation @ axis.point + translation, rotation @ axis.direction)
+        store_axis(obj, moved, obj.get(AXIS_SOURCE, "unknown"))
+        return {'FINISHED'}
+
+
+class SHERD_OT_add_axis_empty(SherdOperator, bpy.types.Operator):
+    """Add an arrow Empty on the stored axis (base to rim), keeping the object as it is"""
+
+    bl_idname = "sherd.add_axis_empty"
+    bl_label = "Add axis Empty"
+
+    def run(self, context):
+        obj = active_mesh_object(context)
+        axis = stored_axis(obj)
+        positions, _, _ = world_arrays(obj)
+        heights = (positions - axis.point) @ axis.direction
+        empty = bpy.data.objects.new(f"{obj.name} axis", None)
+        empty.empty_display_type = 'SINGLE_ARROW'
+        base = Vector(axis.point) + Vector(axis.direction) * float(heights.min())
+        empty.location = base
+        empty.rotation_mode = 'QUATERNION'
+        empty.rotation_quaternion = Vector(axis.direction).to_track_quat('Z', 'Y')
+        empty.empty_display_size = max(float(heights.max() - heights.min()), 1e-6) * 1.5
+        context.collection.objects.link(empty)
+        return {'FINISHED'}
+
+
+classes = (SHERD_OT_orient_automatic, SHERD_OT_orient_three_points, SHERD_OT_refine, SHERD_OT_measure,
+           SHERD_OT_apply_orientation, SHERD_OT_add_axis_empty)

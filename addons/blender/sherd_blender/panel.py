@@ -1,0 +1,77 @@
+"""The "Sherd" tab in the 3D View sidebar (N panel)."""
+
+import math
+
+import bpy
+
+from . import operators
+
+
+class SherdSettings(bpy.types.PropertyGroup):
+    """The panel's choices, kept with the scene."""
+
+    criterion: bpy.props.EnumProperty(name="Criterion", items=operators.CRITERION_ITEMS, default="auto")
+    surface: bpy.props.EnumProperty(name="Surface", items=operators.SURFACE_ITEMS, default="both")
+
+
+def _row(layout, label, value, unit):
+    row = layout.row()
+    row.label(text=label)
+    row.label(text=f"{value} {unit}".strip())
+
+
+class SHERD_PT_panel(bpy.types.Panel):
+    """Orient, refine and measure the active mesh object"""
+
+    bl_idname = "SHERD_PT_panel"
+    bl_label = "Sherd"
+    bl_space_type = 'VIEW_3D'
+    bl_region_type = 'UI'
+    bl_category = "Sherd"
+
+    def draw(self, context):
+        layout = self.layout
+        obj = context.active_object
+        if obj is None or obj.type != 'MESH':
+            layout.label(text="Select a mesh object", icon='INFO')
+            return
+        settings = context.scene.sherd
+
+        column = layout.column(align=True)
+        column.label(text="Orientation")
+        column.operator(operators.SHERD_OT_orient_automatic.bl_idname)
+        column.operator(operators.SHERD_OT_orient_three_points.bl_idname)
+
+        box = layout.box()
+        box.prop(settings, "criterion")
+        box.prop(settings, "surface")
+        refine = box.operator(operators.SHERD_OT_refine.bl_idname)
+        refine.criterion = settings.criterion
+        refine.surface = settings.surface
+        if "sherd_refine_residual_mm" in obj:
+            box.label(text=f"Residual {obj['sherd_refine_residual_mm']:.3f} mm, "
+                           f"tilt {obj['sherd_refine_tilt_deg']:.2f} deg")
+            if obj.get("sherd_pareto_point_count", 0):
+                box.label(text=f"Pareto front: {obj['sherd_pareto_point_count']} points")
+
+        column = layout.column(align=True)
+        column.operator(operators.SHERD_OT_apply_orientation.bl_idname)
+        column.operator(operators.SHERD_OT_add_axis_empty.bl_idname)
+
+        box = layout.box()
+        box.operator(operators.SHERD_OT_measure.bl_idname)
+        if operators.AXIS_SOURCE in obj:
+            box.label(text=f"Axis: {obj[operators.AXIS_SOURCE]}")
+        keys = operators.MEASUREMENT_KEYS
+        if keys["rim_diameter_mm"] in obj:
+            low, high = obj.get(keys["rim_diameter_interval_mm"], (math.nan, math.nan))
+            _row(box, "Rim diameter", f"{obj[keys['rim_diameter_mm']]:.1f} [{low:.1f}, {high:.1f}]", "mm")
+        if keys["sector_angle_deg"] in obj:
+            _row(box, "Sector", f"{obj[keys['sector_angle_deg']]:.1f}", "deg")
+        if keys["height_mm"] in obj:
+            _row(box, "Height", f"{obj[keys['height_mm']]:.1f}", "mm")
+        if keys["capacity_litres"] in obj:
+            _row(box, "Capacity", f"{obj[keys['capacity_litres']]:.3f}", "l")
+
+
+classes = (SherdSettings, SHERD_PT_panel)

@@ -1,0 +1,245 @@
+//! Arguments shared by the analysis sub-commands (`orient`, `draw`, `export`, `batch`) and
+//! their translation into the library's options.
+
+use std::path::Path;
+
+use clap::{Args, ValueEnum};
+
+use sherd::draw::{DrawOptions, Style};
+use sherd::mesh::Point;
+use sherd::orient::{Axis, AxisRecord};
+use sherd::pipeline::PipelineOptions;
+use sherd::refine::{Criterion, RefineOptions, Surface};
+
+/// Units of a scan file whose format does not say.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum Units {
+    Mm,
+    Cm,
+    M,
+}
+
+impl Units {
+    fn millimetres(self) -> f64 {
+        match self {
+            Units::Mm => 1.0,
+            Units::Cm => 10.0,
+            Units::M => 1000.0,
+        }
+    }
+}
+
+/// The refinement criterion, or none.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum RefineChoice {
+    /// Tangent plane where a level rim or base is kept, circles otherwise.
+    Auto,
+    Circles,
+    Pareto,
+    Profile,
+    Tangent,
+    /// Keep the pre-orientation.
+    None,
+}
+
+/// The skins a criterion uses.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum SurfaceChoice {
+    Inner,
+    Outer,
+    Both,
+}
+
+/// How a scan is oriented and measured.
+#[derive(Args, Debug, Clone)]
+pub struct AnalysisArgs {
+    /// Manual pre-orientation from three points on one horizontal feature (rim, rill,
+    /// decoration line), in the scan's units: "x,y,z;x,y,z;x,y,z".
+    #[arg(long, value_name = "x,y,z;x,y,z;x,y,z")]
+    pub manual: Option<String>,
+    /// Refinement criterion after pre-orientation.
+    #[arg(long, value_enum, default_value = "auto")]
+    pub refine: RefineChoice,
+    /// Skins the refinement uses.
+    #[arg(long, value_enum, default_value = "both")]
+    pub surface: SurfaceChoice,
+    /// Units of the scan (files rarely say; scanners mostly write millimetres).
+    #[arg(long, value_enum, default_value = "mm")]
+    pub units: Units,
+}
+
+impl AnalysisArgs {
+    /// The library's options for these arguments.
+    pub fn pipeline_options(&self) -> Result<PipelineOptions, String> {
+        let mut options = PipelineOptions { millimetres_per_unit: self.units.millimetres(), ..Default::default() };
+        if let Some(text) = &self.manual {
+            options.manual_points = Some(parse_three_points(text)?);
+        }
+        let criterion = match self.refine {
+            RefineChoice::Auto => Some(Criterion::Auto),
+            RefineChoice::Circles => Some(Criterion::Circles),
+            RefineChoice::Pareto => Some(Criterion::Pareto),
+            RefineChoice::Profile => Some(Criterion::Profile),
+            RefineChoice::Tangent => Some(Criterion::Tangent),
+            RefineChoice::None => None,
+        };
+        let surface = match self.surface {
+            SurfaceChoice::Inner => Surface::Inner,
+            SurfaceChoice::Outer => Surface::Outer,
+            SurfaceChoice::Both => Surface::Both,
+        };
+        options.refine = criterion.map(|criterion| RefineOptions { criterion, surface, ..Default::default() });
+        if let Some(refine) = &options.refine {
+            options.measure.refine = refine.clone();
+        }
+        Ok(options)
+    }
+}
+
+/// "x,y,z;x,y,z;x,y,z" as three points.
+pub fn parse_three_points(text: &str) -> Result<[Point; 3], String> {
+    let points: Vec<&str> = text.split(';').map(str::trim).filter(|p| !p.is_empty()).collect();
+    if points.len() != 3 {
+        return Err(format!("--manual needs three points \"x,y,z;x,y,z;x,y,z\", got {} in {text:?}", points.len()));
+    }
+    let mut parsed = [Point::origin(); 3];
+    for (i, point) in points.iter().enumerate() {
+        let coordinates: Result<Vec<f64>, _> = point.split(',').map(|c| c.trim().parse::<f64>()).collect();
+        match coordinates {
+            Ok(c) if c.len() == 3 && c.iter().all(|v| v.is_finite()) => parsed[i] = Point::new(c[0], c[1], c[2]),
+            _ => return Err(format!("--manual: point {} ({point:?}) is not three finite numbers x,y,z", i + 1)),
+        }
+    }
+    Ok(parsed)
+}
+
+/// Reads an axis written by `sherd orient --json` (or any JSON object with `axis` or
+/// `point` + `direction`), in the scan's units, and brings it to millimetres.
+pub fn read_axis(path: &Path, millimetres_per_unit: f64) -> Result<Axis, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let value: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| format!("{}: not JSON: {e}", path.display()))?;
+    let axis_value = value.get("axis").cloned().unwrap_or(value);
+    if axis_value.is_null() {
+        return Err(format!("{}: the axis is null (was the sherd oriented?)", path.display()));
+    }
+    let record: AxisRecord = serde_json::from_value(axis_value)
+        .map_err(|e| format!("{}: no axis {{\"point\": [x,y,z], \"direction\": [dx,dy,dz]}}: {e}", path.display()))?;
+    let axis = Axis::from_record(&record)
+        .ok_or_else(|| format!("{}: the axis direction is zero or not finite", path.display()))?;
+    Ok(Axis { point: Point::from(axis.point.coords * millimetres_per_unit), direction: axis.direction })
+}
+
+/// How a sherd is drawn.
+#[derive(Args, Debug, Clone)]
+pub struct DrawingArgs {
+    /// Rendering styles, combinable: linear, colour, light, occlusion, stipple, regularity.
+    #[arg(long, default_value = "linear,light")]
+    pub style: String,
+    /// Publication scale: 1 for 1:1, 2 for 1:2, 3 for 1:3...
+    #[arg(long, default_value_t = 1)]
+    pub scale: u32,
+    /// Resolution of PNG output (and of raster styles inside vector files), dots per inch.
+    #[arg(long, default_value_t = 300.0)]
+    pub dpi: f64,
+    /// Drawing format for `batch` (for `draw`, the output's extension decides).
+    #[arg(long, default_value = "svg", value_parser = ["svg", "eps", "pdf", "png"])]
+    pub format: String,
+}
+
+impl DrawingArgs {
+    /// The library's drawing options, checked.
+    pub fn draw_options(&self) -> Result<DrawOptions, String> {
+        let style = Style::parse(&self.style).map_err(|e| e.to_string())?;
+        let options = DrawOptions { style, scale_denominator: self.scale, dpi: self.dpi, ..Default::default() };
+        options.check().map_err(|e| e.to_string())?;
+        Ok(options)
+    }
+
+    /// Extension of batch drawings.
+    pub fn format_extension(&self) -> &str {
+        &self.format
+    }
+}
+
+
+/// A record as the few lines an archaeologist reads.
+pub fn describe(record: &sherd::pipeline::SherdRecord) -> String {
+    use std::fmt::Write;
+    let mut text = String::new();
+    let _ = writeln!(text, "{}: {}", record.file, record.status);
+    if let Some(reason) = &record.reason {
+        let _ = writeln!(text, "  reason: {reason}");
+    }
+    if let Some(axis) = &record.axis {
+        let [x, y, z] = axis.point;
+        let [dx, dy, dz] = axis.direction;
+        let _ = writeln!(text, "  axis: through ({x:.3}, {y:.3}, {z:.3}) along ({dx:.5}, {dy:.5}, {dz:.5}), base to rim");
+    }
+    if let Some(method) = &record.method {
+        let _ = writeln!(text, "  method: {method}");
+    }
+    let interval = |i: Option<[f64; 2]>| i.map(|[lo, hi]| format!(" ({lo:.0}-{hi:.0})")).unwrap_or_default();
+    if let Some(d) = record.rim_diameter_mm {
+        let _ = writeln!(text, "  rim diameter: {d:.0} mm{}", interval(record.rim_diameter_interval_mm));
+    }
+    if let Some(d) = record.base_diameter_mm {
+        let _ = writeln!(text, "  base diameter: {d:.0} mm{}", interval(record.base_diameter_interval_mm));
+    }
+    if let (Some(angle), Some(percent)) = (record.sector_angle_deg, record.sector_percent) {
+        let _ = writeln!(text, "  preserved sector: {angle:.1} deg ({percent:.1}% of the circumference)");
+    }
+    if let Some(h) = record.height_mm {
+        let _ = writeln!(text, "  preserved height: {h:.1} mm");
+    }
+    if let Some(t) = record.wall_thickness_mm {
+        let _ = writeln!(text, "  wall thickness: {t:.1} mm");
+    }
+    if let Some(c) = record.capacity_litres {
+        let _ = writeln!(text, "  capacity: {c:.2} l");
+    }
+    if let Some([_, hi]) = record.axis_angle_interval_deg {
+        let _ = writeln!(text, "  axis angle uncertainty: {hi:.2} deg (95%)");
+    }
+    if let Some(r) = record.residual_mm {
+        let _ = writeln!(text, "  residual: {r:.3} mm");
+    }
+    if let Some(drawing) = &record.drawing {
+        let _ = writeln!(text, "  drawing: {drawing}");
+    }
+    text
+}
+
+/// The scan (in millimetres) and its axis: read from `axis_file` when given, else found by
+/// the pipeline. A sherd the pipeline cannot orient is an error here: drawing or
+/// exporting it along a wrong axis would mislead.
+pub fn analyse_or_read_axis(
+    scan: &Path,
+    axis_file: Option<&Path>,
+    analysis: &AnalysisArgs,
+) -> Result<(sherd::mesh::Mesh, Axis), String> {
+    let options = analysis.pipeline_options()?;
+    let mesh = sherd::mesh::io::read_mesh(scan).map_err(|e| e.to_string())?;
+    match axis_file {
+        Some(axis_file) => {
+            let axis = read_axis(axis_file, options.scale())?;
+            let mut mesh = mesh;
+            mesh.validate().map_err(|e| format!("{}: {e}", scan.display()))?;
+            for p in &mut mesh.positions {
+                p.coords *= options.scale();
+            }
+            Ok((mesh, axis))
+        }
+        None => {
+            let result = sherd::pipeline::analyse(mesh, &options).map_err(|e| format!("{}: {e}", scan.display()))?;
+            if let sherd::orient::Verdict::NeedsManualOrientation { reason } = &result.orientation.verdict {
+                return Err(format!(
+                    "{}: needs manual orientation ({reason}); give three points with --manual or an axis with --axis",
+                    scan.display()
+                ));
+            }
+            let axis = *result.axis();
+            Ok((result.mesh, axis))
+        }
+    }
+}

@@ -1,0 +1,42 @@
+//! `sherd draw SCAN [--axis FILE.json] --style ... -o out.svg|.eps|.pdf|.png`: the
+//! archaeological illustration.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Args;
+
+use sherd::draw::Drawing;
+
+use crate::common::{analyse_or_read_axis, AnalysisArgs, DrawingArgs};
+
+#[derive(Args, Debug)]
+#[command(
+    about = "Draw a sherd as an archaeological illustration (section left of the axis, exterior right)",
+    after_help = "Examples:\n  sherd draw A011.ply -o A011.svg\n  sherd draw A011.ply --style linear,occlusion,stipple -o A011.pdf --scale 2   # 1:2\n  sherd draw A011.ply --style colour,light -o A011.png --dpi 600\n  sherd orient A011.ply --json > axis.json && sherd draw A011.ply --axis axis.json -o A011.eps\n\n\
+Styles combine: linear (outlines), colour (vertex colours or texture), light\n\
+(directional), occlusion (ambient occlusion), stipple (dots), regularity (distance to\n\
+the ideal vessel, with a legend). The output's extension picks the format."
+)]
+pub struct DrawArgs {
+    /// The scan: .ply, .obj, .stl, .xyz or .pts.
+    pub scan: PathBuf,
+    /// An axis from `sherd orient --json` instead of orienting again.
+    #[arg(long, value_name = "FILE.json")]
+    pub axis: Option<PathBuf>,
+    /// Output file: .svg, .eps, .pdf or .png.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    #[command(flatten)]
+    pub drawing: DrawingArgs,
+    #[command(flatten)]
+    pub analysis: AnalysisArgs,
+}
+
+pub fn run(args: DrawArgs) -> Result<ExitCode, String> {
+    let draw_options = args.drawing.draw_options()?;
+    let (mesh, axis) = analyse_or_read_axis(&args.scan, args.axis.as_deref(), &args.analysis)?;
+    let drawing = Drawing::build(&mesh, &axis, &draw_options).map_err(|e| e.to_string())?;
+    drawing.write(&args.output).map_err(|e| e.to_string())?;
+    Ok(ExitCode::SUCCESS)
+}

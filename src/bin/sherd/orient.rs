@@ -1,0 +1,43 @@
+//! `sherd orient SCAN [--manual ...] [--refine ...] [--surface ...] [--json]`: the axis,
+//! the rim radius, the sector and how far to trust them.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Args;
+
+use sherd::pipeline::{self, STATUS_ERROR};
+
+use crate::common::AnalysisArgs;
+
+#[derive(Args, Debug)]
+#[command(
+    about = "Find the rotation axis of the vessel a sherd came from, and measure it",
+    after_help = "Examples:\n  sherd orient A011.ply\n  sherd orient A011.ply --json > A011.axis.json\n  sherd orient A011.ply --refine tangent --surface outer\n  sherd orient body.ply --manual \"10,2,40;-31,5,38;4,-28,41\"   # three points on a rill\n\n\
+The axis is given in the scan's own frame and units, pointing from base to rim.\n\
+A sherd whose shape does not determine an axis (flat, near spherical, too small) is\n\
+reported as needs_manual_orientation with the reason; the exit code is 0 for it too."
+)]
+pub struct OrientArgs {
+    /// The scan: .ply, .obj, .stl, .xyz or .pts.
+    pub scan: PathBuf,
+    #[command(flatten)]
+    pub analysis: AnalysisArgs,
+    /// Print one JSON object on stdout instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+pub fn run(args: OrientArgs) -> Result<ExitCode, String> {
+    let options = args.analysis.pipeline_options()?;
+    let record = pipeline::process_file(&args.scan, &options, None);
+    if record.status == STATUS_ERROR {
+        return Err(record.error.unwrap_or_default());
+    }
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&record).map_err(|e| e.to_string())?);
+    } else {
+        print!("{}", crate::common::describe(&record));
+    }
+    Ok(ExitCode::SUCCESS)
+}

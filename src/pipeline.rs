@@ -1,0 +1,305 @@
+//! The whole pipeline in one call, as the command-line tool, the C ABI and batch runs use
+//! it: read, repair, orient (automatic or three points), refine, measure, and optionally
+//! draw. Data flow one way (design: "Data flows one way"); this module only chains the
+//! layers and records what each did, it holds no algorithm.
+
+use std::path::Path;
+use std::time::Instant;
+
+use serde::{Deserialize, Serialize};
+
+use crate::draw::{DrawOptions, Drawing};
+use crate::mesh::io::read_mesh;
+use crate::mesh::repair::{repair, RepairOptions, RepairReport};
+use crate::mesh::{Mesh, Point};
+use crate::orient::{orient_automatic, orient_from_three_points, Axis, AxisRecord, ManualOptions, OrientOptions, Orientation, Verdict};
+use crate::profile::measure::{measure, MeasureOptions, Measurements};
+use crate::refine::{refine, RefineOptions, Refinement};
+use crate::{Error, Result};
+
+/// What to do with a scan.
+#[derive(Clone, Debug, Default)]
+pub struct PipelineOptions {
+    /// Millimetres per scan unit (1 for mm, 10 for cm, 1000 for m).
+    pub millimetres_per_unit: f64,
+    /// Repair before processing.
+    pub repair: RepairOptions,
+    /// Automatic pre-orientation.
+    pub orient: OrientOptions,
+    /// Three points on one horizontal feature: manual pre-orientation instead of automatic.
+    pub manual_points: Option<[Point; 3]>,
+    /// Options of the manual pre-orientation.
+    pub manual: ManualOptions,
+    /// Refinement after pre-orientation; `None` keeps the pre-orientation.
+    pub refine: Option<RefineOptions>,
+    /// Measurements.
+    pub measure: MeasureOptions,
+}
+
+/// Everything the pipeline found for one scan.
+#[derive(Clone, Debug)]
+pub struct Analysis {
+    /// The repaired mesh, in millimetres, in the scan's frame.
+    pub mesh: Mesh,
+    /// What repair changed.
+    pub repair: RepairReport,
+    /// The pre-orientation and its verdict.
+    pub orientation: Orientation,
+    /// The refinement, when asked for and the pre-orientation succeeded.
+    pub refinement: Option<Refinement>,
+    /// Measurements along the final axis, when the sherd is oriented.
+    pub measurements: Option<Measurements>,
+    /// Seconds spent in each step.
+    pub timings: Timings,
+}
+
+/// Seconds spent in each step of the pipeline.
+#[derive(Clone, Copy, Debug, Default, Serialize, Deserialize)]
+pub struct Timings {
+    pub read_s: f64,
+    pub repair_s: f64,
+    pub orient_s: f64,
+    pub refine_s: f64,
+    pub measure_s: f64,
+    pub draw_s: f64,
+}
+
+impl Analysis {
+    /// The final axis: refined if refinement ran, else the pre-orientation's.
+    pub fn axis(&self) -> &Axis {
+        self.refinement.as_ref().map_or(&self.orientation.axis, |r| &r.axis)
+    }
+
+    /// True when the sherd got an axis the pipeline stands behind.
+    pub fn is_oriented(&self) -> bool {
+        matches!(self.orientation.verdict, Verdict::Oriented)
+    }
+}
+
+/// Runs repair, orientation, refinement and measurement on `mesh` (in scan units).
+pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
+    let scale = options.scale();
+    mesh.validate()?;
+    if scale != 1.0 {
+        for p in &mut mesh.positions {
+            p.coords *= scale;
+        }
+    }
+    let mut timings = Timings::default();
+    let clock = Instant::now();
+    let repair_report = repair(&mut mesh, &options.repair);
+    timings.repair_s = clock.elapsed().as_secs_f64();
+
+    let clock = Instant::now();
+    let orientation = match options.manual_points {
+        Some(points) => {
+            let points = points.map(|p| Point::from(p.coords * scale));
+            orient_from_three_points(&mesh, points, &options.manual)?
+        }
+        None => orient_automatic(&mesh, &options.orient)?,
+    };
+    timings.orient_s = clock.elapsed().as_secs_f64();
+
+    let oriented = orientation.verdict.is_oriented();
+    let clock = Instant::now();
+    let refinement = match (&options.refine, oriented) {
+        (Some(refine_options), true) => Some(refine(&mesh, &orientation.axis, refine_options)?),
+        _ => None,
+    };
+    timings.refine_s = clock.elapsed().as_secs_f64();
+
+    let mut analysis = Analysis { mesh, repair: repair_report, orientation, refinement, measurements: None, timings };
+    if oriented {
+        let clock = Instant::now();
+        analysis.measurements = Some(measure(&analysis.mesh, analysis.axis(), &options.measure));
+        analysis.timings.measure_s = clock.elapsed().as_secs_f64();
+    }
+    Ok(analysis)
+}
+
+impl PipelineOptions {
+    /// Millimetres per scan unit, 1 when unset.
+    pub fn scale(&self) -> f64 {
+        if self.millimetres_per_unit > 0.0 { self.millimetres_per_unit } else { 1.0 }
+    }
+}
+
+/// Reads `path`, analyses it and, when `drawing` is given and the sherd is oriented, draws
+/// it to that file. Never fails: an unreadable or unorientable scan is a record whose
+/// status says so, so that a batch goes on.
+pub fn process_file(path: &Path, options: &PipelineOptions, drawing: Option<(&DrawOptions, &Path)>) -> SherdRecord {
+    let file = path.display().to_string();
+    let clock = Instant::now();
+    let mesh = match read_mesh(path) {
+        Ok(mesh) => mesh,
+        Err(error) => return SherdRecord::failed(file, &error),
+    };
+    let read_s = clock.elapsed().as_secs_f64();
+    let mut analysis = match analyse(mesh, options) {
+        Ok(analysis) => analysis,
+        Err(error) => return SherdRecord::failed(file, &error),
+    };
+    analysis.timings.read_s = read_s;
+    let mut record = SherdRecord::from_analysis(file, &analysis, options.scale());
+    if let (Some((draw_options, output)), true) = (drawing, analysis.is_oriented()) {
+        let clock = Instant::now();
+        let written = Drawing::build(&analysis.mesh, analysis.axis(), draw_options).and_then(|d| d.write(output));
+        record.timings.draw_s = clock.elapsed().as_secs_f64();
+        match written {
+            Ok(()) => record.drawing = Some(output.display().to_string()),
+            Err(error) => {
+                record.status = STATUS_ERROR.into();
+                record.error = Some(format!("drawing: {error}"));
+            }
+        }
+    }
+    record
+}
+
+/// Status of a sherd oriented and measured.
+pub const STATUS_OK: &str = "ok";
+/// Status of a sherd whose data do not determine an axis.
+pub const STATUS_NEEDS_MANUAL: &str = "needs_manual_orientation";
+/// Status of a sherd that could not be processed (the reason is in `error`).
+pub const STATUS_ERROR: &str = "error";
+
+/// One row of a batch report and the body of `sherd orient --json`.
+#[derive(Clone, Debug, Default, Serialize, Deserialize)]
+pub struct SherdRecord {
+    /// The scan file.
+    pub file: String,
+    /// `ok`, `needs_manual_orientation` or `error`.
+    pub status: String,
+    /// Why the sherd needs manual orientation.
+    pub reason: Option<String>,
+    /// The error's message, when `status` is `error`.
+    pub error: Option<String>,
+    /// The axis in the scan's own frame and units, base to rim.
+    pub axis: Option<AxisRecord>,
+    /// Pre-orientation method and refinement criterion, e.g. "automatic + tangent".
+    pub method: Option<String>,
+    /// Residual of the final criterion (refinement) or of the normal lines (pre-orientation), mm.
+    pub residual_mm: Option<f64>,
+    /// 95% interval of the axis angle error `[0, upper]`, degrees.
+    pub axis_angle_interval_deg: Option<[f64; 2]>,
+    /// Outer rim radius, mm; null when no level rim is preserved.
+    pub rim_radius_mm: Option<f64>,
+    /// Rim diameter, mm.
+    pub rim_diameter_mm: Option<f64>,
+    /// 95% interval of the rim diameter, mm.
+    pub rim_diameter_interval_mm: Option<[f64; 2]>,
+    /// Base diameter, mm.
+    pub base_diameter_mm: Option<f64>,
+    /// 95% interval of the base diameter, mm.
+    pub base_diameter_interval_mm: Option<[f64; 2]>,
+    /// Preserved arc, degrees.
+    pub sector_angle_deg: Option<f64>,
+    /// Preserved arc, percent of the circumference.
+    pub sector_percent: Option<f64>,
+    /// Preserved height, mm.
+    pub height_mm: Option<f64>,
+    /// Median wall thickness, mm.
+    pub wall_thickness_mm: Option<f64>,
+    /// Capacity of the whole vessel, litres, when the profile runs from base to rim.
+    pub capacity_litres: Option<f64>,
+    /// The drawing written, if any.
+    pub drawing: Option<String>,
+    /// Seconds per step.
+    pub timings: Timings,
+}
+
+impl SherdRecord {
+    /// The record of a scan that could not be processed.
+    pub fn failed(file: String, error: &Error) -> Self {
+        SherdRecord { file, status: STATUS_ERROR.into(), error: Some(error.to_string()), ..Default::default() }
+    }
+
+    /// The record of an analysis; `millimetres_per_unit` brings the axis back to the
+    /// scan's own units.
+    pub fn from_analysis(file: String, analysis: &Analysis, millimetres_per_unit: f64) -> Self {
+        let orientation = &analysis.orientation;
+        let mut record = SherdRecord { file, timings: analysis.timings, ..Default::default() };
+        let mut method = orientation.report.method.clone();
+        if let Some(refinement) = &analysis.refinement {
+            method = format!("{method} + {}", format!("{:?}", refinement.report.method).to_lowercase());
+        }
+        record.method = Some(method);
+        match &orientation.verdict {
+            Verdict::Oriented => record.status = STATUS_OK.into(),
+            Verdict::NeedsManualOrientation { reason } => {
+                record.status = STATUS_NEEDS_MANUAL.into();
+                record.reason = Some(reason.clone());
+                return record;
+            }
+        }
+        let axis = analysis.axis();
+        let axis_in_scan_units = Axis { point: Point::from(axis.point.coords / millimetres_per_unit), direction: axis.direction };
+        record.axis = Some(axis_in_scan_units.record());
+        record.residual_mm = Some(match &analysis.refinement {
+            Some(refinement) => refinement.report.residual_mm,
+            None => orientation.report.residual_scale_mm,
+        });
+        if let Some(m) = &analysis.measurements {
+            record.axis_angle_interval_deg = m.axis_angle_interval_deg;
+            record.rim_radius_mm = m.rim_radius_mm;
+            record.rim_diameter_mm = m.rim_diameter_mm;
+            record.rim_diameter_interval_mm = m.rim_diameter_interval_mm;
+            record.base_diameter_mm = m.base_diameter_mm;
+            record.base_diameter_interval_mm = m.base_diameter_interval_mm;
+            record.sector_angle_deg = Some(m.sector_angle_deg);
+            record.sector_percent = Some(m.sector_percent);
+            record.height_mm = Some(m.height_mm);
+            record.wall_thickness_mm = m.wall_thickness_mm;
+            record.capacity_litres = m.capacity_litres;
+        }
+        record
+    }
+
+    /// The columns of `report.csv`.
+    pub const CSV_HEADER: &'static str = "file,status,reason,rim_diameter_mm,rim_diameter_low_mm,rim_diameter_high_mm,base_diameter_mm,base_diameter_low_mm,base_diameter_high_mm,sector_angle_deg,sector_percent,height_mm,wall_thickness_mm,capacity_litres,axis_angle_upper_deg,residual_mm,method,drawing,read_s,repair_s,orient_s,refine_s,measure_s,draw_s";
+
+    /// This record as a row of `report.csv` (RFC 4180 quoting).
+    pub fn csv_row(&self) -> String {
+        let number = |v: Option<f64>| v.map(|v| format!("{v:.3}")).unwrap_or_default();
+        let low = |v: Option<[f64; 2]>| number(v.map(|i| i[0]));
+        let high = |v: Option<[f64; 2]>| number(v.map(|i| i[1]));
+        let reason = self.error.clone().or_else(|| self.reason.clone()).unwrap_or_default();
+        let status = if self.error.is_some() { format!("error: {reason}") } else { self.status.clone() };
+        let t = &self.timings;
+        [
+            csv_quote(&self.file),
+            csv_quote(&status),
+            csv_quote(&reason),
+            number(self.rim_diameter_mm),
+            low(self.rim_diameter_interval_mm),
+            high(self.rim_diameter_interval_mm),
+            number(self.base_diameter_mm),
+            low(self.base_diameter_interval_mm),
+            high(self.base_diameter_interval_mm),
+            number(self.sector_angle_deg),
+            number(self.sector_percent),
+            number(self.height_mm),
+            number(self.wall_thickness_mm),
+            number(self.capacity_litres),
+            high(self.axis_angle_interval_deg),
+            number(self.residual_mm),
+            csv_quote(self.method.as_deref().unwrap_or("")),
+            csv_quote(self.drawing.as_deref().unwrap_or("")),
+            format!("{:.3}", t.read_s),
+            format!("{:.3}", t.repair_s),
+            format!("{:.3}", t.orient_s),
+            format!("{:.3}", t.refine_s),
+            format!("{:.3}", t.measure_s),
+            format!("{:.3}", t.draw_s),
+        ]
+        .join(",")
+    }
+}
+
+fn csv_quote(field: &str) -> String {
+    if field.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", field.replace('"', "\"\""))
+    } else {
+        field.to_owned()
+    }
+}

@@ -1,0 +1,238 @@
+//! The `sherd` command's contract (`../shared/design.md`, "The command-line tool"), run
+//! as a user runs it: the JSON of `orient`, exit codes, error messages, `export`, and
+//! `batch` with its report, resuming and broken files.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use assert_cmd::Command;
+use serde_json::Value;
+
+fn sherd() -> Command {
+    Command::cargo_bin("sherd").expect("the sherd binary is built")
+}
+
+/// Writes synthetic sherds with `sherd synth` and returns their PLY files, sorted.
+fn synth(dir: &Path, extra: &[&str]) -> Vec<PathBuf> {
+    sherd().arg("synth").arg("-o").arg(dir).args(extra).assert().success();
+    let mut files: Vec<PathBuf> = fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "ply"))
+        .collect();
+    files.sort();
+    assert!(!files.is_empty(), "sherd synth wrote no PLY into {}", dir.display());
+    files
+}
+
+fn truth_of(scan: &Path) -> Value {
+    let path = scan.with_extension("truth.json");
+    serde_json::from_slice(&fs::read(&path).unwrap()).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+fn vector(value: &Value) -> [f64; 3] {
+    let v: Vec<f64> = value.as_array().unwrap().iter().map(|c| c.as_f64().unwrap()).collect();
+    [v[0], v[1], v[2]]
+}
+
+fn angle_deg(a: [f64; 3], b: [f64; 3]) -> f64 {
+    let dot = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    (dot / (norm(a) * norm(b))).clamp(-1.0, 1.0).acos().to_degrees()
+}
+
+fn orient_json(scan: &Path, extra: &[&str]) -> Value {
+    let output = sherd().arg("orient").arg(scan).arg("--json").args(extra).output().unwrap();
+    assert!(output.status.success(), "sherd orient failed: {}", String::from_utf8_lossy(&output.stderr));
+    serde_json::from_slice(&output.stdout)
+        .unwrap_or_else(|e| panic!("stdout is not one JSON object ({e}): {}", String::from_utf8_lossy(&output.stdout)))
+}
+
+#[test]
+fn orient_json_gives_the_axis_base_to_rim_and_the_rim_radius() {
+    let dir = tempfile::tempdir().unwrap();
+    let scans = synth(dir.path(), &["--seed", "11", "--part", "rim", "--faces", "30000"]);
+    let truth = truth_of(&scans[0]);
+    let json = orient_json(&scans[0], &[]);
+    assert_eq!(json["status"], "ok", "{json:#}");
+    for key in ["axis", "rim_radius_mm", "sector_angle_deg", "method", "residual_mm", "rim_diameter_interval_mm"] {
+        assert!(json.get(key).is_some(), "the JSON lacks {key}: {json:#}");
+    }
+    let direction = vector(&json["axis"]["direction"]);
+    let true_direction = vector(&truth["axis"]["direction"]);
+    let error = angle_deg(direction, true_direction);
+    assert!(error < 3.0, "axis off by {error:.2} deg (it must point base to rim): {json:#}");
+    let radius = json["rim_radius_mm"].as_f64().expect("a rim sherd has a rim radius");
+    let true_radius = truth["rim_radius_mm"].as_f64().unwrap();
+    assert!((radius - true_radius).abs() < 0.05 * true_radius, "rim radius {radius:.1} mm, truth {true_radius:.1} mm");
+    let sector = json["sector_angle_deg"].as_f64().unwrap();
+    assert!(sector > 0.0 && sector < 360.0, "sector {sector}");
+}
+
+#[test]
+fn units_option_keeps_the_axis_in_the_file_units_and_reports_millimetres() {
+    let dir = tempfile::tempdir().unwrap();
+    let scans = synth(dir.path(), &["--seed", "11", "--part", "rim", "--faces", "30000"]);
+    let in_mm = orient_json(&scans[0], &["--refine", "none"]);
+    let in_cm = orient_json(&scans[0], &["--refine", "none", "--units", "cm"]);
+    let (r_mm, r_cm) = (in_mm["rim_radius_mm"].as_f64().unwrap(), in_cm["rim_radius_mm"].as_f64().unwrap());
+    assert!((r_cm / r_mm - 10.0).abs() < 0.2, "a file in cm has radii 10x larger in mm: {r_mm} vs {r_cm}");
+    let (p_mm, p_cm) = (vector(&in_mm["axis"]["point"]), vector(&in_cm["axis"]["point"]));
+    let d_mm = vector(&in_mm["axis"]["direction"]);
+    // Same line in the file's units: the offset between the two points lies along the axis.
+    let offset = [p_cm[0] - p_mm[0], p_cm[1] - p_mm[1], p_cm[2] - p_mm[2]];
+    let along = offset[0] * d_mm[0] + offset[1] * d_mm[1] + offset[2] * d_mm[2];
+    let across = (offset.iter().map(|c| c * c).sum::<f64>() - along * along).max(0.0).sqrt();
+    assert!(across < 1.0, "the axis moved {across:.2} units across itself when only the units changed");
+}
+
+#[test]
+fn a_flat_base_piece_is_reported_as_needing_manual_orientation_with_exit_code_zero() {
+    let dir = tempfile::tempdir().unwrap();
+    let scans = synth(dir.path(), &["--seed", "5", "--hard-case", "flat-base", "--faces", "20000"]);
+    let json = orient_json(&scans[0], &[]);
+    assert_eq!(json["status"], "needs_manual_orientation", "{json:#}");
+    assert!(json["reason"].as_str().is_some_and(|r| !r.is_empty()), "{json:#}");
+    assert!(json["rim_radius_mm"].is_null());
+}
+
+#[test]
+fn errors_name_the_file_and_exit_non_zero() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = dir.path().join("missing.ply");
+    let output = sherd().arg("orient").arg(&missing).arg("--json").output().unwrap();
+    assert!(!output.status.success());
+    assert!(String::from_utf8_lossy(&output.stderr).contains("missing.ply"));
+    assert!(output.stdout.is_empty(), "nothing on stdout for an error");
+
+    let broken = dir.path().join("broken.ply");
+    fs::write(&broken, b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n1\n2\n").unwrap();
+    let output = sherd().arg("orient").arg(&broken).output().unwrap();
+    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("broken.ply"), "{stderr}");
+
+    let output = sherd().args(["orient", "x.ply", "--manual", "1,2,3;4,5"]).output().unwrap();
+    assert!(!output.status.success());
+    assert!(String::from_utf8_lossy(&output.stderr).contains("--manual"));
+
+    let output = sherd().arg("orient").arg(dir.path()).output().unwrap();
+    assert!(!output.status.success(), "a folder is not a scan");
+}
+
+#[test]
+fn export_writes_the_oriented_model_the_reconstruction_and_the_profile() {
+    let dir = tempfile::tempdir().unwrap();
+    let scans = synth(dir.path(), &["--seed", "21", "--part", "rim-to-base", "--faces", "30000"]);
+    let axis_file = dir.path().join("axis.json");
+    let json = orient_json(&scans[0], &[]);
+    assert_eq!(json["status"], "ok", "{json:#}");
+    fs::write(&axis_file, serde_json::to_vec(&json).unwrap()).unwrap();
+    let (oriented, vessel, profile) =
+        (dir.path().join("o.ply"), dir.path().join("v.ply"), dir.path().join("p.csv"));
+    sherd()
+        .arg("export")
+        .arg(&scans[0])
+        .arg("--axis")
+        .arg(&axis_file)
+        .arg("--oriented")
+        .arg(&oriented)
+        .arg("--reconstruction")
+        .arg(&vessel)
+        .arg("--profile")
+        .arg(&profile)
+        .assert()
+        .success();
+    let info = |path: &Path| -> Value {
+        let output = sherd().arg("info").arg(path).arg("--json").output().unwrap();
+        assert!(output.status.success());
+        serde_json::from_slice(&output.stdout).unwrap()
+    };
+    let original = info(&scans[0]);
+    assert_eq!(info(&oriented)["vertex_count"], original["vertex_count"]);
+    let vessel_info = info(&vessel);
+    assert!(vessel_info["face_count"].as_u64().unwrap() > 1000);
+    let csv = fs::read_to_string(&profile).unwrap();
+    assert!(csv.lines().count() > 20, "the profile has points: {csv:.200}");
+    // The oriented model has its axis on z: every vertex's radius is at most the rim radius
+    // plus the wall.
+    let rim = json["rim_radius_mm"].as_f64().unwrap();
+    let size = vector(&info(&oriented)["bounding_box"]["max"]);
+    assert!(size[0] <= rim + 20.0 && size[1] <= rim + 20.0, "oriented extent {size:?} vs rim {rim}");
+
+    let output = sherd().arg("export").arg(&scans[0]).output().unwrap();
+    assert!(!output.status.success(), "export without an output is an error");
+    assert!(String::from_utf8_lossy(&output.stderr).contains("nothing to export"));
+}
+
+fn csv_rows(path: &Path) -> Vec<Vec<String>> {
+    let text = fs::read_to_string(path).unwrap();
+    text.lines().skip(1).map(|line| split_csv(line)).collect()
+}
+
+fn split_csv(line: &str) -> Vec<String> {
+    let (mut fields, mut field, mut quoted) = (Vec::new(), String::new(), false);
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match (c, quoted) {
+            ('"', true) if chars.peek() == Some(&'"') => {
+                field.push('"');
+                chars.next();
+            }
+            ('"', _) => quoted = !quoted,
+            (',', false) => fields.push(std::mem::take(&mut field)),
+            (c, _) => field.push(c),
+        }
+    }
+    fields.push(field);
+    fields
+}
+
+#[test]
+fn batch_reports_every_sherd_keeps_going_past_a_broken_file_and_resumes() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("scans");
+    let scans = synth(&input, &["--seed", "30", "--count", "3", "--part", "rim", "--faces", "20000"]);
+    fs::write(input.join("zz-broken.ply"), b"ply\nformat binary_little_endian 1.0\nelement vertex 1000\nproperty float x\nend_header\n")
+        .unwrap();
+    let output = dir.path().join("out");
+    let run = sherd().arg("batch").arg(&input).arg("-o").arg(&output).args(["--jobs", "2"]).output().unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let rows = csv_rows(&output.join("report.csv"));
+    assert_eq!(rows.len(), scans.len() + 1, "one row per file");
+    let broken = rows.iter().find(|r| r[0].ends_with("zz-broken.ply")).expect("the broken file has a row");
+    assert!(broken[1].starts_with("error: "), "{broken:?}");
+    assert!(broken[1].contains("zz-broken.ply"), "the reason names the file: {broken:?}");
+    for scan in &scans {
+        let row = rows.iter().find(|r| Path::new(&r[0]) == scan).expect("every scan has a row");
+        assert!(row[1] == "ok" || row[1] == "needs_manual_orientation", "{row:?}");
+        if row[1] == "ok" {
+            let stem = scan.file_stem().unwrap().to_string_lossy();
+            assert!(output.join(format!("{stem}.svg")).exists(), "drawing of {stem}");
+        }
+    }
+    let report: Value = serde_json::from_slice(&fs::read(output.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report.as_array().unwrap().len(), rows.len());
+    let leftovers: Vec<_> = fs::read_dir(&output)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains("sherd-tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
+
+    let again = sherd().arg("batch").arg(&input).arg("-o").arg(&output).output().unwrap();
+    assert!(again.status.success());
+    let stderr = String::from_utf8_lossy(&again.stderr);
+    assert!(stderr.contains(&format!("{} sherds already done", scans.len() + 1)), "{stderr}");
+    assert_eq!(csv_rows(&output.join("report.csv")).len(), rows.len());
+}
+
+#[test]
+fn help_teaches_by_example() {
+    for command in ["orient", "draw", "export", "batch", "demo"] {
+        let output = sherd().arg(command).arg("--help").output().unwrap();
+        assert!(output.status.success());
+        let text = String::from_utf8_lossy(&output.stdout);
+        assert!(text.contains("Examples:") && text.contains(&format!("sherd {command}")), "{command}: {text}");
+    }
+}
