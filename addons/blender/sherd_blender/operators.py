@@ -114,10 +114,11 @@ class SherdOperator:
 
     bl_options = {'REGISTER', 'UNDO'}
 
-    def report(self, types, message):
+    def notify(self, types, message):
+        """``report`` that also records in :data:`REPORTS` (RNA's ``report`` cannot be overridden)."""
         REPORTS.append((set(types), message))
         del REPORTS[:-100]
-        super().report(types, message)
+        self.report(types, message)
 
     @classmethod
     def poll(cls, context):
@@ -128,23 +129,25 @@ class SherdOperator:
         try:
             return self.run(context)
         except InputError as error:
-            self.report({'ERROR'}, str(error))
+            self.notify({'ERROR'}, str(error))
         except LibraryMissingError as error:
-            self.report({'ERROR'}, str(error))
+            self.notify({'ERROR'}, str(error))
         except Exception as error:  # noqa: BLE001 - only sherd's own errors are reported, others re-raised
             if not is_sherd_error(error):
                 raise
-            self.report({'ERROR'}, f"sherd: {error}")
+            self.notify({'ERROR'}, f"sherd: {error}")
         return {'CANCELLED'}
 
 
 def _finish_orientation(operator, obj, orientation, source):
     if not orientation.oriented:
-        operator.report({'WARNING'}, f"needs manual orientation: {orientation.reason}")
+        operator.notify({'WARNING'}, f"needs manual orientation: {orientation.reason}")
         return {'CANCELLED'}
     store_axis(obj, orientation.axis, source)
     obj["sherd_angle_uncertainty_deg"] = float(orientation.angle_uncertainty_deg)
-    operator.report({'INFO'}, f"oriented ({source}), uncertainty {orientation.angle_uncertainty_deg:.2f} deg")
+    uncertainty = orientation.angle_uncertainty_deg
+    known = f", uncertainty {uncertainty:.2f} deg" if math.isfinite(uncertainty) else ""
+    operator.notify({'INFO'}, f"oriented ({source}){known}")
     return {'FINISHED'}
 
 
@@ -203,7 +206,7 @@ class SHERD_OT_refine(SherdOperator, bpy.types.Operator):
         obj["sherd_refine_residual_mm"] = float(refinement.residual_mm)
         obj["sherd_refine_tilt_deg"] = float(refinement.tilt_deg)
         obj["sherd_pareto_point_count"] = len(refinement.pareto_front)
-        self.report({'INFO'}, f"refined: tilt {refinement.tilt_deg:.2f} deg, residual {refinement.residual_mm:.3f} mm")
+        self.notify({'INFO'}, f"refined: tilt {refinement.tilt_deg:.2f} deg, residual {refinement.residual_mm:.3f} mm")
         return {'FINISHED'}
 
 
@@ -238,7 +241,7 @@ class SHERD_OT_measure(SherdOperator, bpy.types.Operator):
                 obj[key] = value
             elif key in obj:
                 del obj[key]
-        self.report({'INFO'}, "measured")
+        self.notify({'INFO'}, "measured")
         return {'FINISHED'}
 
 
