@@ -11,10 +11,15 @@ fn orientation(c: &mut Criterion) {
     let sherd = synthetic_sherd(3, &SherdOptions { target_faces: 20_000, ..SherdOptions::for_part(SherdPart::Rim) });
     let mesh = &sherd.mesh;
     let options = OrientOptions::default();
+    let once = orient_automatic(mesh, &options).unwrap();
+    eprintln!("steps of one run (ms): {:?}", once.report.timings_ms);
     let mut group = c.benchmark_group("orient");
     group.sample_size(10);
     group.bench_function(format!("orient_automatic {} vertices", mesh.vertex_count()), |b| {
         b.iter(|| orient_automatic(mesh, &options).unwrap())
+    });
+    group.bench_function(format!("bvh build {} faces", mesh.face_count()), |b| {
+        b.iter(|| sherd::mesh::spatial::Bvh::new(mesh))
     });
     let lines = NormalLines::from_mesh(mesh).unwrap();
     let centered = CenteredLines::new(&lines);

@@ -245,6 +245,155 @@ typedef uint32_t SherdSurface;
 #endif // __cplusplus
 
 /**
+ * Output formats of `sherd_drawing_to_buffer`.
+ */
+enum SherdFormat
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * SVG, one layer per part of the drawing (editable in Inkscape, Illustrator).
+   */
+  SHERD_FORMAT_SVG = 0,
+  /**
+   * Encapsulated PostScript, level 3.
+   */
+  SHERD_FORMAT_EPS = 1,
+  /**
+   * PDF 1.4.
+   */
+  SHERD_FORMAT_PDF = 2,
+  /**
+   * PNG at the options' resolution.
+   */
+  SHERD_FORMAT_PNG = 3,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdFormat SherdFormat;
+#else
+typedef uint32_t SherdFormat;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * Rendering styles, combined as bits for `sherd_draw_options_set_style`.
+ */
+enum SherdStyle
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Outlines and crease lines only.
+   */
+  SHERD_STYLE_LINEAR = 1,
+  /**
+   * Vertex colours or the texture.
+   */
+  SHERD_STYLE_COLOUR = 2,
+  /**
+   * Directional light from the upper left.
+   */
+  SHERD_STYLE_LIGHT = 4,
+  /**
+   * Ambient occlusion.
+   */
+  SHERD_STYLE_OCCLUSION = 8,
+  /**
+   * Dots, denser in darker areas.
+   */
+  SHERD_STYLE_STIPPLE = 16,
+  /**
+   * Vessel regularity as a colour map with its legend.
+   */
+  SHERD_STYLE_REGULARITY = 32,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdStyle SherdStyle;
+#else
+typedef uint32_t SherdStyle;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * How the section is filled (`sherd_draw_options_set_section_fill`).
+ */
+enum SherdSectionFill
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Solid black, the usual convention for pottery.
+   */
+  SHERD_SECTION_FILL_BLACK = 0,
+  /**
+   * 45-degree hatching.
+   */
+  SHERD_SECTION_FILL_HATCHED = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdSectionFill SherdSectionFill;
+#else
+typedef uint32_t SherdSectionFill;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * Where the views stand relative to the axis (`sherd_draw_options_set_placement`).
+ */
+enum SherdPlacement
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Beside the axis, whatever the true radius.
+   */
+  SHERD_PLACEMENT_BESIDE = 0,
+  /**
+   * At the fragment's true distance from the axis.
+   */
+  SHERD_PLACEMENT_TRUE_DISTANCE = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdPlacement SherdPlacement;
+#else
+typedef uint32_t SherdPlacement;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * Which map the regularity style shows (`sherd_draw_options_set_regularity`).
+ */
+enum SherdRegularity
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Distance of each point to the axis.
+   */
+  SHERD_REGULARITY_AXIS_DISTANCE = 0,
+  /**
+   * Distance to the ideal vessel revolved from the section.
+   */
+  SHERD_REGULARITY_IDEAL_VESSEL = 1,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdRegularity SherdRegularity;
+#else
+typedef uint32_t SherdRegularity;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
  * The fragments the orientation must refuse honestly (NEEDS_MANUAL_ORIENTATION).
  */
 typedef struct HardCase HardCase;
@@ -254,6 +403,17 @@ typedef struct HardCase HardCase;
  * release it with `sherd_buffer_free`.
  */
 typedef struct SherdBuffer SherdBuffer;
+
+/**
+ * Options of `sherd_drawing_build`.
+ */
+typedef struct SherdDrawOptions SherdDrawOptions;
+
+/**
+ * A finished drawing. Created by `sherd_drawing_build`, released with
+ * `sherd_drawing_free`; writing it in several formats does not redo the work.
+ */
+typedef struct SherdDrawing SherdDrawing;
 
 /**
  * Options of `sherd_orient_from_three_points`.
@@ -513,6 +673,49 @@ SherdStatus sherd_buffer_contents(const SherdBuffer *buffer,
  * `buffer` must be NULL or a handle from this library not freed before.
  */
 void sherd_buffer_free(SherdBuffer *buffer);
+
+/**
+ * Builds the drawing of `mesh` (the full-resolution scan, in its own frame) oriented by
+ * `axis`: axis as a dash-dot line, section and interior view on the left, exterior view
+ * on the right, rim up, scale bar; styles and layout from `options` (NULL: light and
+ * occlusion, natural size, 300 dpi, the most informative section).
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `options` NULL or live;
+ * `out_drawing` writable.
+ */
+SherdStatus sherd_drawing_build(const SherdMesh *mesh,
+                                const SherdAxis *axis,
+                                const SherdDrawOptions *options,
+                                SherdDrawing **out_drawing);
+
+/**
+ * Writes the drawing to `path`, the format chosen by the extension (.svg, .eps, .pdf,
+ * .png). Atomic: no half-written file on error.
+ *
+ * # Safety
+ * `drawing` must be a live handle; `path` a NUL-terminated string.
+ */
+SherdStatus sherd_drawing_write(const SherdDrawing *drawing, const char *path);
+
+/**
+ * Writes the drawing in `format` (a `SHERD_FORMAT_*` value) into a new buffer
+ * `*out_buffer`, for hosts that keep it in memory (a database, a preview).
+ *
+ * # Safety
+ * `drawing` must be a live handle; `out_buffer` writable.
+ */
+SherdStatus sherd_drawing_to_buffer(const SherdDrawing *drawing,
+                                    uint32_t format,
+                                    SherdBuffer **out_buffer);
+
+/**
+ * Releases a drawing; NULL is ignored. Freeing twice is undefined behaviour.
+ *
+ * # Safety
+ * `drawing` must be NULL or a live handle not freed before.
+ */
+void sherd_drawing_free(SherdDrawing *drawing);
 
 /**
  * The message of the most recent call on this thread that did not return
@@ -1106,7 +1309,8 @@ SherdStatus sherd_measure_options_set_refine_options(SherdMeasureOptions *option
                                                      const SherdRefineOptions *refine_options);
 
 /**
- * Number of bootstrap resamples behind the intervals; 0 gives no intervals (NaN).
+ * Number of bootstrap resamples behind the intervals; 0 gives no intervals (NaN), and
+ * so do fewer than 5 usable resamples.
  *
  * # Safety
  * `options` must be a live handle.
@@ -1129,6 +1333,100 @@ SherdStatus sherd_measure_options_set_bootstrap_seed(SherdMeasureOptions *option
  * `options` must be a live handle.
  */
 SherdStatus sherd_measure_options_set_confidence(SherdMeasureOptions *options, double confidence);
+
+/**
+ * Creates drawing options with the library's defaults (light and occlusion, 1:1,
+ * 300 dpi, black section, views beside the axis, interior view and prolongation on).
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_draw_options_new(SherdDrawOptions **out_options);
+
+/**
+ * Releases drawing options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_draw_options_free(SherdDrawOptions *options);
+
+/**
+ * The styles: a non-empty bitwise or of `SHERD_STYLE_*` values.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_style(SherdDrawOptions *options, uint32_t styles);
+
+/**
+ * Publication scale 1:`denominator` (1 to 100; 1 is natural size).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_scale_denominator(SherdDrawOptions *options,
+                                                     uint32_t denominator);
+
+/**
+ * Resolution of raster content and PNG output, dots per inch (10 to 4800).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_dpi(SherdDrawOptions *options, double dpi);
+
+/**
+ * Angle of the section about the axis, radians from the fragment's centroid; NaN picks
+ * the most informative profile (the default).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_section_angle_rad(SherdDrawOptions *options, double angle_rad);
+
+/**
+ * Section fill: a `SHERD_SECTION_FILL_*` value.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_section_fill(SherdDrawOptions *options, uint32_t fill);
+
+/**
+ * View placement: a `SHERD_PLACEMENT_*` value.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_placement(SherdDrawOptions *options, uint32_t placement);
+
+/**
+ * The map of the regularity style: a `SHERD_REGULARITY_*` value.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_regularity(SherdDrawOptions *options, uint32_t regularity);
+
+/**
+ * Whether the interior view is drawn left of the axis, and whether the outer profile is
+ * prolonged (dashed) to the full diameter.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_views(SherdDrawOptions *options,
+                                         bool interior_view,
+                                         bool prolongation);
+
+/**
+ * A title (inventory number...) as a NUL-terminated UTF-8 string; NULL removes it.
+ *
+ * # Safety
+ * `options` must be a live handle; `title` NULL or a NUL-terminated string.
+ */
+SherdStatus sherd_draw_options_set_title(SherdDrawOptions *options, const char *title);
 
 /**
  * Refines `axis` (from `sherd_orient_*`) on `mesh` with the criterion and surface of

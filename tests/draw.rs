@@ -70,6 +70,20 @@ fn section_is_left_of_the_axis_with_the_rim_on_top_at_its_true_radius() {
     let wall = points.iter().map(|p| axis_x - p[0]).fold(0.0, f64::max) - points.iter().map(|p| axis_x - p[0]).fold(f64::MAX, f64::min);
     assert!(((axis_x - top[0]) - rim).abs() < wall + 1.0, "rim at {} mm, expected {rim} mm", axis_x - top[0]);
 
+    // The diameter label comes from the measurements and matches the truth.
+    let label = drawing
+        .layer("annotations")
+        .unwrap()
+        .children
+        .iter()
+        .find_map(|e| match e {
+            Element::Text(t) if t.content.starts_with("Ø ") => Some(t.content.clone()),
+            _ => None,
+        })
+        .expect("a diameter label");
+    let diameter: f64 = label[3..].split(' ').next().unwrap().parse().unwrap();
+    assert!((diameter - 2.0 * rim).abs() < 0.03 * 2.0 * rim + 1.0, "{label} vs {:.0} mm", 2.0 * rim);
+
     // The same in pixels: black section pixels left of the axis column, the exterior view
     // (shaded, not white) right of it.
     let bytes = drawing.to_bytes(Format::Png).unwrap();

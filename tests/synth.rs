@@ -283,6 +283,9 @@ fn tiny_preset_is_tiny() {
         assert!(diagonal < 45.0, "tiny piece {diagonal} mm across");
         assert_eq!(sherd.truth.part, SherdPart::Body);
     }
+    // An ordinary body piece is not flagged.
+    let ordinary = synthetic_sherd(0, &SherdOptions::for_part(SherdPart::Body));
+    assert_eq!(ordinary.truth.hard_case, None);
 }
 
 #[test]
@@ -307,6 +310,10 @@ fn a_broken_vessel_is_its_fragments() {
     assert!((outer_area / expected - 1.0).abs() < 0.03, "fragments' outer area {outer_area} vs vessel {expected}");
     let parts: Vec<SherdPart> = vessel.fragments.iter().map(|f| f.truth.part).collect();
     assert!(parts.contains(&SherdPart::Rim), "{parts:?}");
+    for fragment in &vessel.fragments {
+        let flat = fragment.truth.part == SherdPart::Flat;
+        assert_eq!(fragment.truth.hard_case == Some(HardCase::FlatBase), flat, "{:?}", fragment.truth.part);
+    }
 }
 
 #[test]
@@ -365,5 +372,19 @@ fn rim_pieces_do_not_creep_round_the_rim() {
         let sherd = synthetic_sherd(seed, &options);
         let sector = sherd.truth.sector_angle_deg;
         assert!(sector < 1.5 * options.sector_deg[1], "seed {seed} ({:?}): a rim piece spans {sector} degrees", sherd.truth.vessel.shape);
+    }
+}
+
+#[test]
+fn a_globular_vessel_flags_its_spherical_pieces() {
+    let options = VesselOptions { shape: Some(VesselShape::Globular), fragment_count: 30, cell_size_mm: 3.0, noise_mm: 0.0, deformation_scale: 0.0, ..Default::default() };
+    let vessel = generate_vessel(8, &options);
+    let spherical: Vec<&SynthSherd> = vessel.fragments.iter().filter(|f| f.truth.hard_case == Some(HardCase::NearSpherical)).collect();
+    assert!(!spherical.is_empty(), "no fragment of a globular body flagged near-spherical");
+    for fragment in spherical {
+        let outer: Vec<Point> = fragment.mesh.positions.iter().zip(&fragment.vertex_kinds).filter(|(_, k)| **k == SurfaceKind::Outer).map(|(p, _)| *p).collect();
+        let (centre, radius) = fit_sphere(&outer);
+        let worst = outer.iter().map(|p| ((p - centre).norm() - radius).abs()).fold(0.0, f64::max);
+        assert!(worst < 0.1, "a fragment flagged near-spherical is {worst} mm off a sphere");
     }
 }

@@ -251,6 +251,190 @@ private:
     SherdMesh* handle_;
 };
 
+/// An option builder handle with its `_free` function, released on scope exit.
+template <typename Handle, void (*Free)(Handle*)>
+class Options {
+public:
+    explicit Options(SherdStatus (*create)(Handle**)) { check(create(&handle_)); }
+    Options(const Options&) = delete;
+    Options& operator=(const Options&) = delete;
+    ~Options() { Free(handle_); }
+    Handle* get() const noexcept { return handle_; }
+
+private:
+    Handle* handle_ = nullptr;
+};
+
+using RepairOptions = Options<SherdRepairOptions, sherd_repair_options_free>;
+using OrientOptions = Options<SherdOrientOptions, sherd_orient_options_free>;
+using ManualOptions = Options<SherdManualOptions, sherd_manual_options_free>;
+using RefineOptions = Options<SherdRefineOptions, sherd_refine_options_free>;
+using MeasureOptions = Options<SherdMeasureOptions, sherd_measure_options_free>;
+using DrawOptions = Options<SherdDrawOptions, sherd_draw_options_free>;
+
+/// A synthetic sherd with its true axis and the ground truth as JSON.
+struct SyntheticSherd {
+    Mesh mesh;
+    SherdAxis true_axis;
+    std::string truth_json;
+};
+
+/// A synthetic sherd (`kind` a SHERD_SYNTH_KIND_* value; `target_faces` 0 for the default).
+inline SyntheticSherd synthetic_sherd(std::uint64_t seed, std::uint32_t kind, std::size_t target_faces = 0,
+                                      double noise_mm = 0.02) {
+    SherdMesh* handle = nullptr;
+    SherdBuffer* truth = nullptr;
+    SherdAxis axis = make_axis({0, 0, 0}, {0, 0, 1});
+    check(sherd_synthetic_sherd(seed, kind, target_faces, noise_mm, &handle, &axis, &truth));
+    Mesh mesh(handle);
+    return SyntheticSherd{std::move(mesh), axis, take_buffer(truth)};
+}
+
+/// Repairs `mesh` in place; returns the report as JSON.
+inline std::string repair(Mesh& mesh, bool keep_largest_component = true) {
+    RepairOptions options(sherd_repair_options_new);
+    check(sherd_repair_options_set_keep_largest_component(options.get(), keep_largest_component));
+    SherdBuffer* report = nullptr;
+    check(sherd_mesh_repair(mesh.get(), options.get(), &report));
+    return take_buffer(report);
+}
+
+/// A decimated copy with about `target_faces` triangles.
+inline Mesh decimate(const Mesh& mesh, std::size_t target_faces) {
+    SherdMesh* handle = nullptr;
+    check(sherd_mesh_decimate(mesh.get(), target_faces, &handle));
+    return Mesh(handle);
+}
+
+/// The outcome of an orientation: when `oriented` is false the axis is a guess and
+/// `reason` says why (NEEDS_MANUAL_ORIENTATION is an answer, not an exception).
+struct Orientation {
+    SherdAxis axis;
+    SherdOrientReport report;
+    bool oriented;
+    std::string reason;
+    std::string report_json;
+};
+
+namespace detail {
+inline Orientation finish_orientation(SherdStatus status, const SherdAxis& axis, const SherdOrientReport& report,
+                                      SherdBuffer* json) {
+    if (status != SHERD_STATUS_OK && status != SHERD_STATUS_NEEDS_MANUAL_ORIENTATION) {
+        sherd_buffer_free(json);
+        throw Error(status, sherd_last_error_message());
+    }
+    std::string reason = status == SHERD_STATUS_OK ? std::string() : std::string(sherd_last_error_message());
+    return Orientation{axis, report, status == SHERD_STATUS_OK, reason, take_buffer(json)};
+}
+
+inline SherdOrientReport empty_report() {
+    SherdOrientReport report{};
+    report.size = sizeof(SherdOrientReport);
+    return report;
+}
+}  // namespace detail
+
+/// Automatic orientation from the normals (default options).
+inline Orientation orient_automatic(const Mesh& mesh) {
+    SherdAxis axis = make_axis({0, 0, 0}, {0, 0, 1});
+    SherdOrientReport report = detail::empty_report();
+    SherdBuffer* json = nullptr;
+    SherdStatus status = sherd_orient_automatic(mesh.get(), nullptr, &axis, &report, &json);
+    return detail::finish_orientation(status, axis, report, json);
+}
+
+/// Orientation from three points (x y z each) picked on one horizontal feature.
+inline Orientation orient_from_three_points(const Mesh& mesh, const std::array<double, 9>& points) {
+    SherdAxis axis = make_axis({0, 0, 0}, {0, 0, 1});
+    SherdOrientReport report = detail::empty_report();
+    SherdBuffer* json = nullptr;
+    SherdStatus status = sherd_orient_from_three_points(mesh.get(), points.data(), nullptr, &axis, &report, &json);
+    return detail::finish_orientation(status, axis, report, json);
+}
+
+/// A refinement: the refined axis, its summary, the Pareto front and the report as JSON.
+struct Refinement {
+    SherdAxis axis;
+    SherdRefineReport report;
+    std::vector<SherdParetoPoint> pareto_front;
+    std::string report_json;
+};
+
+/// Refines `axis` with `criterion` (SHERD_CRITERION_*) on `surface` (SHERD_SURFACE_*).
+inline Refinement refine(const Mesh& mesh, const SherdAxis& axis, std::uint32_t criterion = SHERD_CRITERION_AUTO,
+                         std::uint32_t surface = SHERD_SURFACE_BOTH) {
+    RefineOptions options(sherd_refine_options_new);
+    check(sherd_refine_options_set_criterion(options.get(), criterion));
+    check(sherd_refine_options_set_surface(options.get(), surface));
+    SherdRefinement* handle = nullptr;
+    check(sherd_refine(mesh.get(), &axis, options.get(), &handle));
+    struct Release {
+        SherdRefinement* handle;
+        ~Release() { sherd_refinement_free(handle); }
+    } release{handle};
+    Refinement result{make_axis({0, 0, 0}, {0, 0, 1}), SherdRefineReport{}, {}, {}};
+    result.report.size = sizeof(SherdRefineReport);
+    check(sherd_refinement_axis(handle, &result.axis));
+    check(sherd_refinement_report(handle, &result.report));
+    result.pareto_front.resize(result.report.pareto_point_count);
+    std::size_t count = 0;
+    check(sherd_refinement_pareto_front(handle, result.pareto_front.data(), result.pareto_front.size(), &count));
+    SherdBuffer* json = nullptr;
+    check(sherd_refinement_report_json(handle, &json));
+    result.report_json = take_buffer(json);
+    return result;
+}
+
+/// Measurements with intervals (`bootstrap_samples` resamples; 0: none, NaN intervals).
+inline SherdMeasurements measure(const Mesh& mesh, const SherdAxis& axis, std::size_t bootstrap_samples = 20,
+                                 std::string* json = nullptr) {
+    MeasureOptions options(sherd_measure_options_new);
+    check(sherd_measure_options_set_bootstrap_samples(options.get(), bootstrap_samples));
+    SherdMeasurements measurements{};
+    measurements.size = sizeof(SherdMeasurements);
+    SherdBuffer* buffer = nullptr;
+    check(sherd_measure(mesh.get(), &axis, options.get(), &measurements, json ? &buffer : nullptr));
+    if (json) *json = take_buffer(buffer);
+    return measurements;
+}
+
+/// A finished drawing (SherdDrawing).
+class Drawing {
+public:
+    /// Builds the drawing; `styles` is a combination of SHERD_STYLE_* bits.
+    Drawing(const Mesh& mesh, const SherdAxis& axis, std::uint32_t styles, double dpi = 300.0,
+            const std::string& title = std::string()) {
+        DrawOptions options(sherd_draw_options_new);
+        check(sherd_draw_options_set_style(options.get(), styles));
+        check(sherd_draw_options_set_dpi(options.get(), dpi));
+        if (!title.empty()) check(sherd_draw_options_set_title(options.get(), title.c_str()));
+        check(sherd_drawing_build(mesh.get(), &axis, options.get(), &handle_));
+    }
+    Drawing(const Drawing&) = delete;
+    Drawing& operator=(const Drawing&) = delete;
+    Drawing(Drawing&& other) noexcept : handle_(std::exchange(other.handle_, nullptr)) {}
+    ~Drawing() { sherd_drawing_free(handle_); }
+
+    /// The drawing in `format` (SHERD_FORMAT_*).
+    std::string to_bytes(std::uint32_t format) const {
+        SherdBuffer* buffer = nullptr;
+        check(sherd_drawing_to_buffer(handle_, format, &buffer));
+        return take_buffer(buffer);
+    }
+
+    /// Writes the drawing, the format by the extension.
+    void write(const std::string& path) const { check(sherd_drawing_write(handle_, path.c_str())); }
+
+private:
+    SherdDrawing* handle_ = nullptr;
+};
+
+/// Writes the 3D reconstruction (the profile revolved) as PLY.
+inline void export_reconstruction_ply(const Mesh& mesh, const SherdAxis& axis, const std::string& path,
+                                      double angle_rad = NAN, std::size_t segments = 0, bool binary = true) {
+    check(sherd_export_reconstruction_ply(mesh.get(), &axis, angle_rad, segments, path.c_str(), binary));
+}
+
 /// Writes `mesh` moved into the oriented frame as PLY.
 inline void export_oriented_ply(const Mesh& mesh, const SherdAxis& axis, const std::string& path, bool binary = true) {
     check(sherd_export_oriented_ply(mesh.get(), &axis, path.c_str(), binary));

@@ -16,6 +16,7 @@ use crate::mesh::normals::{compute_vertex_normals, NormalWeighting};
 use crate::mesh::occlusion::ambient_occlusion;
 use crate::mesh::Mesh;
 use crate::orient::Axis;
+use crate::profile::measure::{measure, MeasureOptions, Measurements};
 use crate::profile::regularity::{distance_to_axis, distance_to_ideal_vessel, ColorMap, ColorScale};
 use crate::profile::section::{angular_extent, most_informative_angle, oriented_frame, section_of_oriented, ProfileSection};
 use crate::{Error, Result};
@@ -151,6 +152,14 @@ pub(crate) fn build(mesh: &Mesh, axis: &Axis, options: &DrawOptions) -> Result<D
             angle.to_degrees()
         )));
     }
+    let measurements = match &options.measurements {
+        Some(m) => m.clone(),
+        None => {
+            let mut measure_options = MeasureOptions::default();
+            measure_options.bootstrap.samples = 0;
+            measure(mesh, axis, &measure_options)
+        }
+    };
     let style = options.style;
     let occlusion = if style.occlusion || style.stipple {
         let raw = ambient_occlusion(mesh, &options.occlusion)?;
@@ -237,14 +246,14 @@ pub(crate) fn build(mesh: &Mesh, axis: &Axis, options: &DrawOptions) -> Result<D
         Some(canvas.stroke(0.25, &[4.0, 1.0, 0.5, 1.0])),
     );
     canvas.layer("axis").push(Element::Path(axis_path));
-    add_annotations(&mut canvas, &profile, exterior_right, options);
+    add_annotations(&mut canvas, &profile, &measurements, exterior_right, options);
     add_scale_bar(&mut canvas, z_bottom - 9.0 * scale, exterior_right, &profile);
     if let Some((_, map)) = &regularity {
         add_legend(&mut canvas, map, exterior_right + 8.0 * scale, z_top);
     }
     if let Some(title) = &options.title {
         let x = -profile.outer_radius_max;
-        canvas.text("annotations", [x, z_top + 12.0 * scale], title.clone(), 4.0, Anchor::Start);
+        canvas.text("annotations", [x, z_top + 21.0 * scale], title.clone(), 4.0, Anchor::Start);
     }
     Ok(canvas.finish(options.dpi))
 }
@@ -399,8 +408,6 @@ struct OuterProfile {
     inner_radius_min: f64,
     z_bottom: f64,
     z_top: f64,
-    /// Width in r of the section's lowest 0.5 mm (a flat base when several mm).
-    bottom_width: f64,
 }
 
 impl OuterProfile {
@@ -426,10 +433,7 @@ impl OuterProfile {
                 samples.push((z, outer, inner));
             }
         }
-        let low: Vec<f64> =
-            section.curves.iter().flat_map(|c| c.points.iter()).filter(|p| p[1] < z0 + 0.5).map(|p| p[0]).collect();
-        let bottom_width = low.iter().copied().fold(f64::NEG_INFINITY, f64::max) - low.iter().copied().fold(f64::INFINITY, f64::min);
-        OuterProfile { samples, outer_radius_max: r1, inner_radius_min: r0, z_bottom: z0, z_top: z1, bottom_width }
+        OuterProfile { samples, outer_radius_max: r1, inner_radius_min: r0, z_bottom: z0, z_top: z1 }
     }
 
     /// The outer radius at the top (the rim radius, for a rim sherd).
@@ -475,30 +479,50 @@ impl OuterProfile {
     }
 }
 
-/// Horizontal lines at rim, carinations and base, the dashed prolongation of the outer
-/// profile mirrored at the full diameter, and the diameter label.
-fn add_annotations(canvas: &mut Canvas, profile: &OuterProfile, exterior_right: f64, options: &DrawOptions) {
+/// Horizontal lines at rim, carinations and base (rim and base where the measurements
+/// found them preserved), the dashed prolongation of the outer profile mirrored at the
+/// full diameter, and the diameter and sector labels.
+fn add_annotations(canvas: &mut Canvas, profile: &OuterProfile, measurements: &Measurements, exterior_right: f64, options: &DrawOptions) {
     let scale = canvas.scale;
     let thin = canvas.stroke(0.15, &[]);
     let right_end = |r: f64| if options.prolongation { r } else { exterior_right.max(0.0) };
     let mut lines = Path { segments: Vec::new(), fill: None, stroke: Some(thin) };
-    let rim = profile.top_radius();
-    lines.extend_polyline(&[[-rim, profile.z_top], [right_end(rim), profile.z_top]], false);
+    let top = profile.top_radius();
+    if measurements.rim_radius_mm.is_some() {
+        lines.extend_polyline(&[[-top, profile.z_top], [right_end(top), profile.z_top]], false);
+    }
     for (z, r) in profile.carinations() {
         lines.extend_polyline(&[[-r, z], [right_end(r), z]], false);
     }
-    if profile.bottom_width > 3.0 {
+    if measurements.base_radius_mm.is_some() {
         let r = profile.bottom_radius();
         lines.extend_polyline(&[[-r, profile.z_bottom], [right_end(r), profile.z_bottom]], false);
     }
-    canvas.layer("annotations").push(Element::Path(lines));
+    if !lines.segments.is_empty() {
+        canvas.layer("annotations").push(Element::Path(lines));
+    }
     if options.prolongation {
         let mirrored: Vec<[f64; 2]> = profile.samples.iter().map(|&(z, r, _)| [r, z]).collect();
         let dashed = Path::polyline(&mirrored, false, None, Some(canvas.stroke(0.2, &[1.5, 1.0])));
         canvas.layer("annotations").push(Element::Path(dashed));
     }
-    let label = format!("Ø {:.0} mm", 2.0 * rim);
-    canvas.text("annotations", [0.0, profile.z_top + 6.0 * scale], label, 3.2, Anchor::Middle);
+    let mut labels = Vec::new();
+    if let Some(d) = measurements.rim_diameter_mm {
+        labels.push(match measurements.rim_diameter_interval_mm {
+            Some([lo, hi]) => format!("Ø {d:.0} mm ({lo:.0}-{hi:.0})"),
+            None => format!("Ø {d:.0} mm"),
+        });
+        labels.push(format!("{:.0}% of rim", measurements.sector_percent));
+    } else {
+        labels.push(format!("{:.0}° of circumference", measurements.sector_angle_deg));
+    }
+    if let Some(d) = measurements.base_diameter_mm {
+        labels.push(format!("base Ø {d:.0} mm"));
+    }
+    for (i, label) in labels.into_iter().enumerate() {
+        let z = profile.z_top + (6.0 + 4.5 * (2 - i.min(2)) as f64) * scale;
+        canvas.text("annotations", [0.0, z], label, 3.2, Anchor::Middle);
+    }
 }
 
 /// A scale bar of a round length (alternating black and white centimetres) with its

@@ -27,6 +27,7 @@ pub use model::{Anchor, Dots, Drawing, Element, Group, Image, Segment, Stroke, T
 use crate::mesh::occlusion::OcclusionOptions;
 use crate::mesh::Mesh;
 use crate::orient::Axis;
+use crate::profile::measure::Measurements;
 use crate::{Error, Result};
 
 /// Output formats.
@@ -165,6 +166,9 @@ pub struct DrawOptions {
     pub stipple_dot_radius_mm: f64,
     /// An optional title (inventory number...).
     pub title: Option<String>,
+    /// The fragment's measurements (`profile::measure`) for the diameter and sector
+    /// labels and the rim and base lines; `None` measures it here (without bootstrap).
+    pub measurements: Option<Measurements>,
 }
 
 impl Default for DrawOptions {
@@ -184,6 +188,7 @@ impl Default for DrawOptions {
             stipple_spacing_mm: 0.35,
             stipple_dot_radius_mm: 0.09,
             title: None,
+            measurements: None,
         }
     }
 }

@@ -7,6 +7,7 @@
 //! algorithm lives here: each entry point converts, calls the Rust API and converts back.
 
 pub mod buffer;
+pub mod draw;
 pub mod error;
 pub mod export;
 pub mod measure;
@@ -21,6 +22,7 @@ pub mod synth;
 pub mod version;
 
 pub use buffer::*;
+pub use draw::*;
 pub use error::sherd_last_error_message;
 pub use export::*;
 pub use measure::*;

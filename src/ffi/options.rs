@@ -8,6 +8,7 @@ use super::panic::guard;
 use super::pointers::{borrow, borrow_mut, require, write_out};
 use super::status::SherdStatus;
 use super::refine::{SherdCriterion, SherdSurface};
+use crate::draw::{DrawOptions, Placement, RegularityKind, SectionFill, Style};
 use crate::mesh::repair::RepairOptions;
 use crate::orient::{ManualOptions, OrientOptions};
 use crate::profile::measure::MeasureOptions;
@@ -359,7 +360,8 @@ pub unsafe extern "C" fn sherd_measure_options_set_refine_options(
     })
 }
 
-/// Number of bootstrap resamples behind the intervals; 0 gives no intervals (NaN).
+/// Number of bootstrap resamples behind the intervals; 0 gives no intervals (NaN), and
+/// so do fewer than 5 usable resamples.
 ///
 /// # Safety
 /// `options` must be a live handle.
@@ -394,6 +396,235 @@ pub unsafe extern "C" fn sherd_measure_options_set_confidence(options: *mut Sher
             return Err(Failure::invalid(format!("`confidence` must be in (0, 1), got {confidence}")));
         }
         builder.options.bootstrap.confidence = confidence;
+        Ok(())
+    })
+}
+
+// ---------------------------------------------------------------- drawing
+
+/// Options of `sherd_drawing_build`.
+pub struct SherdDrawOptions {
+    pub(crate) options: DrawOptions,
+}
+
+/// Rendering styles, combined as bits for `sherd_draw_options_set_style`.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SherdStyle {
+    /// Outlines and crease lines only.
+    Linear = 1,
+    /// Vertex colours or the texture.
+    Colour = 2,
+    /// Directional light from the upper left.
+    Light = 4,
+    /// Ambient occlusion.
+    Occlusion = 8,
+    /// Dots, denser in darker areas.
+    Stipple = 16,
+    /// Vessel regularity as a colour map with its legend.
+    Regularity = 32,
+}
+
+/// How the section is filled (`sherd_draw_options_set_section_fill`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SherdSectionFill {
+    /// Solid black, the usual convention for pottery.
+    Black = 0,
+    /// 45-degree hatching.
+    Hatched = 1,
+}
+
+/// Where the views stand relative to the axis (`sherd_draw_options_set_placement`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SherdPlacement {
+    /// Beside the axis, whatever the true radius.
+    Beside = 0,
+    /// At the fragment's true distance from the axis.
+    TrueDistance = 1,
+}
+
+/// Which map the regularity style shows (`sherd_draw_options_set_regularity`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SherdRegularity {
+    /// Distance of each point to the axis.
+    AxisDistance = 0,
+    /// Distance to the ideal vessel revolved from the section.
+    IdealVessel = 1,
+}
+
+/// Applies `change` to a copy of the drawing options and keeps it only when the drawing
+/// layer accepts the result, so that a refused value leaves the options as they were.
+fn set_checked(function: &str, options: *mut SherdDrawOptions, change: impl FnOnce(&mut DrawOptions)) -> SherdStatus {
+    set(function, options, |builder| {
+        let mut candidate = builder.options.clone();
+        change(&mut candidate);
+        candidate.check()?;
+        builder.options = candidate;
+        Ok(())
+    })
+}
+
+/// Creates drawing options with the library's defaults (light and occlusion, 1:1,
+/// 300 dpi, black section, views beside the axis, interior view and prolongation on).
+///
+/// # Safety
+/// `out_options` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_draw_options_new(out_options: *mut *mut SherdDrawOptions) -> SherdStatus {
+    guard("sherd_draw_options_new", || unsafe {
+        new_builder(out_options, SherdDrawOptions { options: DrawOptions::default() })
+    })
+}
+
+/// Releases drawing options; NULL is ignored.
+///
+/// # Safety
+/// `options` must be NULL or a live handle, not freed before.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_draw_options_free(options: *mut SherdDrawOptions) {
+    unsafe { free_builder(options) }
+}
+
+/// The styles: a non-empty bitwise or of `SHERD_STYLE_*` values.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_draw_options_set_style(options: *mut SherdDrawOptions, styles: u32) -> SherdStatus {
+    set("sherd_draw_options_set_style", options, |builder| {
+        const ALL: u32 = 63;
+        if styles == 0 || styles & !ALL != 0 {
+            return Err(Failure::invalid(format!(
+                "`styles` {styles:#x} must be a non-empty combination of SHERD_STYLE_* bits (mask {ALL:#x})"
+            )));
+        }
+        let has = |style: SherdStyle| styles & style as u32 != 0;
+        builder.options.style = Style {
+            linear: has(SherdStyle::Linear),
+            colour: has(SherdStyle::Colour),
+            light: has(SherdStyle::Light),
+            occlusion: has(SherdStyle::Occlusion),
+            stipple: has(SherdStyle::Stipple),
+            regularity: has(SherdStyle::Regularity),
+        };
+        Ok(())
+    })
+}
+
+/// Publication scale 1:`denominator` (1 to 100; 1 is natural size).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_draw_options_set_scale_denominator(options: *mut SherdDrawOptions, denominator: u32) -> SherdStatus {
+    set_checked("sherd_draw_options_set_scale_denominator", options, |draw| draw.scale_denominator = denominator)
+}
+
+/// Resolution of raster content and PNG output, dots per inch (10 to 4800).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_draw_options_set_dpi(options: *mut SherdDrawOptions, dpi: f64) -> SherdStatus {
+    set_checked("sherd_draw_options_set_dpi", options, |draw| draw.dpi = dpi)
+}
+
+/// Angle of the section about the axis, radians from the fragment's centroid; NaN picks
+/// the most informative profile (the default).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_draw_options_set_section_angle_rad(options: *mut SherdDrawOptions, angle_rad: f64) -> SherdStatus {
+    set("sherd_draw_options_set_section_angle_rad", options, |builder| {
+        if angle_rad.is_nan() {
+            builder.options.section_angle_rad = None;
+            return Ok(());
+        }
+        crate::profile::section::check_angle(angle_rad)?;
+        builder.options.section_angle_rad = Some(angle_rad);
+        Ok(())
+    })
+}
+
+/// Section fill: a `SHERD_SECTION_FILL_*` value.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_draw_options_set_section_fill(options: *mut SherdDrawOptions, fill: u32) -> SherdStatus {
+    set("sherd_draw_options_set_section_fill", options, |builder| {
+        builder.options.section_fill = match fill {
+            0 => SectionFill::Black,
+            1 => SectionFill::Hatched,
+            other => return Err(Failure::invalid(format!("`fill` {other} is not a SHERD_SECTION_FILL_* value (0 or 1)"))),
+        };
+        Ok(())
+    })
+}
+
+/// View placement: a `SHERD_PLACEMENT_*` value.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_draw_options_set_placement(options: *mut SherdDrawOptions, placement: u32) -> SherdStatus {
+    set("sherd_draw_options_set_placement", options, |builder| {
+        builder.options.placement = match placement {
+            0 => Placement::Beside,
+            1 => Placement::TrueDistance,
+            other => return Err(Failure::invalid(format!("`placement` {other} is not a SHERD_PLACEMENT_* value (0 or 1)"))),
+        };
+        Ok(())
+    })
+}
+
+/// The map of the regularity style: a `SHERD_REGULARITY_*` value.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_draw_options_set_regularity(options: *mut SherdDrawOptions, regularity: u32) -> SherdStatus {
+    set("sherd_draw_options_set_regularity", options, |builder| {
+        builder.options.regularity = match regularity {
+            0 => RegularityKind::AxisDistance,
+            1 => RegularityKind::IdealVessel,
+            other => return Err(Failure::invalid(format!("`regularity` {other} is not a SHERD_REGULARITY_* value (0 or 1)"))),
+        };
+        Ok(())
+    })
+}
+
+/// Whether the interior view is drawn left of the axis, and whether the outer profile is
+/// prolonged (dashed) to the full diameter.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_draw_options_set_views(options: *mut SherdDrawOptions, interior_view: bool, prolongation: bool) -> SherdStatus {
+    set("sherd_draw_options_set_views", options, |builder| {
+        builder.options.interior_view = interior_view;
+        builder.options.prolongation = prolongation;
+        Ok(())
+    })
+}
+
+/// A title (inventory number...) as a NUL-terminated UTF-8 string; NULL removes it.
+///
+/// # Safety
+/// `options` must be a live handle; `title` NULL or a NUL-terminated string.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_draw_options_set_title(options: *mut SherdDrawOptions, title: *const std::ffi::c_char) -> SherdStatus {
+    set("sherd_draw_options_set_title", options, |builder| {
+        builder.options.title = if title.is_null() {
+            None
+        } else {
+            let text = unsafe { std::ffi::CStr::from_ptr(title) };
+            Some(text.to_str().map_err(|e| Failure::invalid(format!("`title` is not UTF-8: {e}")))?.to_string())
+        };
         Ok(())
     })
 }

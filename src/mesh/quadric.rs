@@ -83,7 +83,7 @@ impl Quadric {
         let c22 = a[0] * a[3] - a[1] * a[1];
         let det = a[0] * c00 + a[1] * c01 + a[2] * c02;
         let trace = a[0] + a[3] + a[5];
-        if !(det > 1e-12 * trace * trace * trace) {
+        if det.is_nan() || det <= 1e-12 * trace * trace * trace {
             return None;
         }
         let [bx, by, bz] = self.b;

@@ -2,8 +2,6 @@
 //! line; its sense comes from the shape of the vessel seen in the rz half-plane:
 //! - a floor: surface facing along the axis that reaches in towards the axis from the
 //!   wall is a base, and the wall rises from it;
-//! - a free end (rim): at one end of the profile the two skins close in a lip that faces
-//!   away from the sherd and does not reach in towards the axis;
 //! - the opening: a vessel widens from its base more often than it narrows (the weakest
 //!   cue, used alone only when the others are silent).
 
@@ -31,16 +29,8 @@ struct Sample {
 }
 
 /// Weighs the cues for `axis` on the lines that lie on the surface of revolution
-/// (`lines` with `on_surface[i]`) and, for the lip, on all the sherd's lines (the lip has
-/// no opposite partner, so the opposite-normal test drops it); `lip_tolerance_mm` is how
-/// close a normal line must pass to the axis to be on the surface of revolution.
-pub fn direction_evidence(
-    lines: &NormalLines,
-    on_surface: &[bool],
-    all_lines: &NormalLines,
-    axis: &Axis,
-    lip_tolerance_mm: f64,
-) -> DirectionEvidence {
+/// (`lines` with `on_surface[i]`).
+pub fn direction_evidence(lines: &NormalLines, on_surface: &[bool], axis: &Axis) -> DirectionEvidence {
     let d = axis.direction.into_inner();
     let samples: Vec<Sample> = (0..lines.len())
         .filter(|&i| on_surface[i])
@@ -74,9 +64,6 @@ pub fn direction_evidence(
             return DirectionEvidence { score: sense, cue: "floor: the wall rises from a flat base".into() };
         }
     }
-    if let Some(score) = lip_evidence(all_lines, axis, lip_tolerance_mm) {
-        return DirectionEvidence { score, cue: "rim: a lip closes one end of the profile".into() };
-    }
     if wall_weight <= 0.0 {
         return DirectionEvidence { score: 0.0, cue: "no wall to judge from".into() };
     }
@@ -87,43 +74,6 @@ pub fn direction_evidence(
         .sum::<f64>()
         / wall_weight;
     DirectionEvidence { score: 0.2 * slope.clamp(-1.0, 1.0), cue: "opening: the wall widens towards the rim".into() }
-}
-
-/// The lip: at one end of the sherd's height, surface whose normals meet the axis (it is
-/// turned, not broken: a fracture's normals miss the axis) and point away from the sherd
-/// along the axis. A rim has one at the top; when one end has three times the other's lip
-/// area, that end is the rim.
-fn lip_evidence(lines: &NormalLines, axis: &Axis, tolerance_mm: f64) -> Option<f64> {
-    let d = axis.direction.into_inner();
-    let heights: Vec<f64> = lines.points.iter().map(|p| (p - axis.point).dot(&d)).collect();
-    let (low, high) = heights.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), h| (lo.min(*h), hi.max(*h)));
-    let zone = 0.15 * (high - low);
-    let total: f64 = lines.weights.iter().sum();
-    let (mut top, mut bottom) = (0.0, 0.0);
-    for i in 0..lines.len() {
-        let axial = lines.directions[i].dot(&d);
-        if axial.abs() < 0.5 {
-            continue;
-        }
-        if super::surfaces::normal_line_distance(axis, &lines.points[i], &lines.directions[i]) > tolerance_mm {
-            continue;
-        }
-        if axial > 0.0 && heights[i] > high - zone {
-            top += lines.weights[i];
-        } else if axial < 0.0 && heights[i] < low + zone {
-            bottom += lines.weights[i];
-        }
-    }
-    if top + bottom < 0.005 * total {
-        return None;
-    }
-    if top >= 3.0 * bottom {
-        Some(0.6)
-    } else if bottom >= 3.0 * top {
-        Some(-0.6)
-    } else {
-        None
-    }
 }
 
 fn weighted_quantile(values: impl Iterator<Item = (f64, f64)>, quantile: f64) -> f64 {

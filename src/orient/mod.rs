@@ -200,8 +200,7 @@ pub fn orient_automatic(mesh: &Mesh, options: &OrientOptions) -> Result<Orientat
     report.residual_scale_mm = fit.scale * scale_mm;
     report.raw_angle_sigma_deg = fit.angle_sigma_rad.to_degrees();
     report.competitor = verdict::best_competitor(&fit);
-    let lip_tolerance_mm = (3.0 * report.residual_scale_mm).max(0.5);
-    let evidence = direction::direction_evidence(&lines, &inliers, &all_lines, &axis, lip_tolerance_mm);
+    let evidence = direction::direction_evidence(&lines, &inliers, &axis);
     if evidence.score < 0.0 {
         axis = axis.flipped();
     }
@@ -373,7 +372,7 @@ pub fn orient_from_three_points(mesh: &Mesh, points: [Point; 3], options: &Manua
         &axis,
         &surfaces::SegmentOptions { max_line_distance_mm: None, keep_fraction: Some(options.keep_fraction) },
     );
-    let evidence = direction::direction_evidence(&lines, &keep, &lines, &axis, 0.5);
+    let evidence = direction::direction_evidence(&lines, &keep, &axis);
     if evidence.score < 0.0 {
         axis = axis.flipped();
     }

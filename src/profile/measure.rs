@@ -14,10 +14,10 @@ use serde::{Deserialize, Serialize};
 use super::section::{most_informative_angle, oriented_frame, profile_section};
 use crate::mesh::{Mesh, Point};
 use crate::orient::Axis;
-use crate::refine::sections::{quantile, sector_angle_rad, vertical_sections, PreparedSurface};
-use crate::refine::tangent::{edge_evidence, Edge};
+use crate::refine::sections::{quantile, sector_angle_rad, vertical_sections, PreparedSurface, Skin, Surface};
+use crate::refine::tangent::Edge;
 use crate::refine::uncertainty::{angle_interval_deg, bootstrap_axes, value_interval, BootstrapOptions};
-use crate::refine::RefineOptions;
+use crate::refine::{detect_edges, RefineOptions};
 
 /// Settings of [`measure`].
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -26,11 +26,6 @@ pub struct MeasureOptions {
     pub refine: RefineOptions,
     /// The bootstrap behind the intervals (`samples: 0` for none).
     pub bootstrap: BootstrapOptions,
-    /// A rim or base is present when the top or bottom extremes of this share of the
-    /// vertical sections are level within `edge_tolerance_mm`.
-    pub edge_level_fraction: f64,
-    /// Height tolerance of the level test, mm.
-    pub edge_tolerance_mm: f64,
     /// Heights at which the wall thickness is measured along the profile.
     pub wall_thickness_stations: usize,
 }
@@ -40,8 +35,6 @@ impl Default for MeasureOptions {
         MeasureOptions {
             refine: RefineOptions::default(),
             bootstrap: BootstrapOptions::default(),
-            edge_level_fraction: 0.8,
-            edge_tolerance_mm: 1.5,
             wall_thickness_stations: 24,
         }
     }
@@ -94,32 +87,44 @@ const EDGE_SECTIONS: usize = 24;
 /// Points this close below the top (above the bottom) of their section belong to the rim (base) edge, mm.
 const EDGE_BAND_MM: f64 = 1.0;
 
-/// The outer radius of `edge` under `axis`: per vertical section, the largest radius among
-/// the points within [`EDGE_BAND_MM`] of the section's extreme; the median over sections.
-fn edge_radius(oriented: &[Point], edge: Edge) -> Option<f64> {
+/// The outer radius of `edge` under an axis (`oriented`: the vertices in its frame).
+/// Rim: per vertical section, the radius of the highest outer-skin vertex (the rim's
+/// outer edge: on a flaring wall the inner edge of the lip is the higher one). Base: per
+/// vertical section, the radius of the outer-skin vertex nearest to [`EDGE_BAND_MM`]
+/// above the standing plane (where the outer skin leaves it). The median over sections.
+fn edge_radius(oriented: &[Point], outer_skin: &[bool], edge: Edge) -> Option<f64> {
     let sections = vertical_sections(oriented, EDGE_SECTIONS);
-    let global = match edge {
-        Edge::Rim => oriented.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max),
-        Edge::Base => oriented.iter().map(|p| p.z).fold(f64::INFINITY, f64::min),
-    };
+    let standing = oriented.iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
     let mut radii: Vec<f64> = sections
         .iter()
-        .filter(|s| !s.is_empty())
-        .map(|indices| {
-            let extreme = match edge {
-                // The rim's edge is found per section (a tilted or wavy rim still counts)...
-                Edge::Rim => indices.iter().map(|&i| oriented[i].z).fold(f64::NEG_INFINITY, f64::max),
-                // ...the base's on the common standing plane.
-                Edge::Base => global,
-            };
-            indices
-                .iter()
-                .map(|&i| oriented[i])
-                .filter(|p| (p.z - extreme).abs() <= EDGE_BAND_MM)
-                .map(|p| p.x.hypot(p.y))
-                .fold(f64::NAN, f64::max)
+        .filter_map(|indices| {
+            let radius = |p: &Point| p.x.hypot(p.y);
+            match edge {
+                Edge::Rim => indices
+                    .iter()
+                    .filter(|&&i| outer_skin[i])
+                    .map(|&i| oriented[i])
+                    .max_by(|a, b| a.z.total_cmp(&b.z))
+                    .map(|p| radius(&p)),
+                // The outer skin where it has risen by the band above the standing plane.
+                Edge::Base => indices
+                    .iter()
+                    .filter(|&&i| outer_skin[i])
+                    .map(|&i| oriented[i])
+                    .min_by(|a, b| ((a.z - standing) - EDGE_BAND_MM).abs().total_cmp(&((b.z - standing) - EDGE_BAND_MM).abs()))
+                    .filter(|p| ((p.z - standing) - EDGE_BAND_MM).abs() <= EDGE_BAND_MM)
+                    .map(|p| radius(&p))
+                    // Where the skin test left the corner out: the widest point of the band.
+                    .or_else(|| {
+                        indices
+                            .iter()
+                            .map(|&i| oriented[i])
+                            .filter(|p| p.z - standing <= EDGE_BAND_MM)
+                            .map(|p| radius(&p))
+                            .max_by(f64::total_cmp)
+                    }),
+            }
         })
-        .filter(|r| r.is_finite())
         .collect();
     (!radii.is_empty()).then(|| quantile(&mut radii, 0.5))
 }
@@ -204,18 +209,17 @@ pub fn measure(mesh: &Mesh, axis: &Axis, options: &MeasureOptions) -> Measuremen
     let high = oriented.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
     measurements.height_mm = high - low;
 
-    let edges: Vec<Edge> = match PreparedSurface::new(mesh, axis, options.refine.surface, options.refine.section_count) {
-        Ok(surface) => [Edge::Rim, Edge::Base]
-            .into_iter()
-            .filter(|&edge| {
-                edge_evidence(&surface, edge, options.edge_tolerance_mm, EDGE_SECTIONS).level_fraction >= options.edge_level_fraction
-            })
-            .collect(),
-        Err(error) => {
-            measurements.notes.push(format!("no rim or base test: {error}"));
-            Vec::new()
-        }
-    };
+    let (edges, outer_skin): (Vec<Edge>, Vec<bool>) =
+        match PreparedSurface::new(mesh, axis, Surface::Both, options.refine.section_count) {
+            Ok(surface) => (
+                detect_edges(&surface, &options.refine).into_iter().map(|e| e.edge).collect(),
+                surface.skins.iter().map(|s| *s == Some(Skin::Outer)).collect(),
+            ),
+            Err(error) => {
+                measurements.notes.push(format!("no rim or base test: {error}"));
+                (Vec::new(), vec![false; mesh.positions.len()])
+            }
+        };
     let has_rim = edges.contains(&Edge::Rim);
     let has_base = edges.contains(&Edge::Base);
     if !has_rim {
@@ -224,8 +228,8 @@ pub fn measure(mesh: &Mesh, axis: &Axis, options: &MeasureOptions) -> Measuremen
     if !has_base {
         measurements.notes.push("no level base preserved: no base diameter".into());
     }
-    measurements.rim_radius_mm = has_rim.then(|| edge_radius(&oriented, Edge::Rim)).flatten();
-    measurements.base_radius_mm = has_base.then(|| edge_radius(&oriented, Edge::Base)).flatten();
+    measurements.rim_radius_mm = has_rim.then(|| edge_radius(&oriented, &outer_skin, Edge::Rim)).flatten();
+    measurements.base_radius_mm = has_base.then(|| edge_radius(&oriented, &outer_skin, Edge::Base)).flatten();
     measurements.rim_diameter_mm = measurements.rim_radius_mm.map(|r| 2.0 * r);
     measurements.base_diameter_mm = measurements.base_radius_mm.map(|r| 2.0 * r);
 
@@ -254,7 +258,7 @@ pub fn measure(mesh: &Mesh, axis: &Axis, options: &MeasureOptions) -> Measuremen
             };
             let interval = |estimate: Option<f64>, edge: Edge| {
                 let estimate = estimate?;
-                let values: Vec<f64> = replicate_points.iter().filter_map(|p| edge_radius(p, edge)).collect();
+                let values: Vec<f64> = replicate_points.iter().filter_map(|p| edge_radius(p, &outer_skin, edge)).collect();
                 // Scanner noise on the edge points is not resampled: at least 0.2% of the radius.
                 value_interval(estimate, &values, estimate * 0.002, &options.bootstrap).map(|[a, b]| [2.0 * a, 2.0 * b])
             };

@@ -18,8 +18,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::circle_fit::{fit_circle, CircleFitMethod};
-use super::sections::{sector_angle_rad, AxisParameters, CandidateFrame, PreparedSurface};
-use crate::mesh::Point;
+use super::sections::{axis_through, sector_angle_rad, AxisParameters, CandidateFrame, PreparedSurface};
 
 /// Settings of the multi-criteria search.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -123,17 +122,12 @@ pub fn evaluate(surface: &PreparedSurface, tilt_x_rad: f64, tilt_y_rad: f64, opt
         .sum::<f64>()
         / weight_sum;
     let residual = fits.iter().map(|f| f.1 * f.2).sum::<f64>() / weight_sum;
-    // The axis through the mean centre, written as the start-frame crossing of z = 0.
-    let direction = frame.direction();
-    let on_axis = frame.to_start(&Point::new(mean[0], mean[1], mean_height));
-    let t = -on_axis.z / direction.z;
-    let crossing = on_axis + direction * t;
     Some(ParetoPoint {
         tilt_x_deg: tilt_x_rad.to_degrees(),
         tilt_y_deg: tilt_y_rad.to_degrees(),
         centre_dispersion_mm2: dispersion,
         circle_residual_mm2: residual,
-        parameters: [tilt_x_rad, tilt_y_rad, crossing.x, crossing.y],
+        parameters: axis_through([tilt_x_rad, tilt_y_rad], mean, mean_height),
     })
 }
 

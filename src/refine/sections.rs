@@ -91,6 +91,16 @@ impl CandidateFrame {
     }
 }
 
+/// The parameters of the axis with tilts `tilts` through the point `centre` at height
+/// `height_mm` of the candidate frame with those tilts and no shift.
+pub fn axis_through(tilts: [f64; 2], centre: [f64; 2], height_mm: f64) -> AxisParameters {
+    let frame = CandidateFrame::new(&[tilts[0], tilts[1], 0.0, 0.0]);
+    let direction = frame.direction();
+    let on_axis = frame.to_start(&Point::new(centre[0], centre[1], height_mm));
+    let crossing = on_axis + direction * (-on_axis.z / direction.z);
+    [tilts[0], tilts[1], crossing.x, crossing.y]
+}
+
 /// One horizontal section of one skin: points of the cut in the candidate frame's
 /// xy-plane, with weights (cut segment lengths, or 1 per vertex in a slab).
 #[derive(Clone, Debug, Default)]
@@ -313,12 +323,11 @@ impl PreparedSurface {
                 (skins[t[1] as usize] == Some(skin) && skins[t[2] as usize] == Some(skin)).then_some((*t, skin))
             })
             .collect();
+        // Sections span the skins; a piece with (almost) no skin, such as a base with its
+        // floor, keeps its sections over all its points for the criteria that need no skin.
         let mut heights: Vec<f64> = points.iter().zip(&skins).filter(|(_, s)| s.is_some()).map(|(p, _)| p.z).collect();
         if heights.len() < 10 {
-            return Err(Error::DegenerateGeometry(format!(
-                "only {} vertices lie on the chosen skin ({surface:?}) around the start axis",
-                heights.len()
-            )));
+            heights = points.iter().map(|p| p.z).collect();
         }
         let low = quantile(&mut heights, 0.05);
         let high = quantile(&mut heights, 0.95);

@@ -10,8 +10,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::objective::Objective;
-use super::sections::{vertical_sections, AxisParameters, CandidateFrame, PreparedSurface};
+use super::objective::{minimize, FreeParameters, Minimum, Objective, SearchSettings};
+use super::circle_fit::{fit_circle, CircleFitMethod};
+use super::sections::{axis_through, vertical_sections, AxisParameters, CandidateFrame, PreparedSurface};
+use crate::mesh::Point;
 
 /// Which horizontal edge of the vessel the fragment preserves.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -65,17 +67,39 @@ impl TangentObjective {
 
     /// The extreme height of each vertical section under a candidate frame.
     pub fn extremes(&self, frame: &CandidateFrame) -> Vec<f64> {
-        let direction = frame.direction();
+        self.extreme_points(frame).iter().map(|p| p.z).collect()
+    }
+
+    /// The extreme point of each vertical section, in the candidate frame.
+    pub fn extreme_points(&self, frame: &CandidateFrame) -> Vec<Point> {
         self.section_points
             .iter()
             .map(|points| {
-                let heights = points.iter().map(|p| p.coords.dot(&direction));
+                let moved = points.iter().map(|p| frame.apply(p));
                 match self.edge {
-                    Edge::Rim => heights.fold(f64::NEG_INFINITY, f64::max),
-                    Edge::Base => heights.fold(f64::INFINITY, f64::min),
+                    Edge::Rim => moved.max_by(|a, b| a.z.total_cmp(&b.z)),
+                    Edge::Base => moved.min_by(|a, b| a.z.total_cmp(&b.z)),
                 }
+                .expect("sections are not empty")
             })
             .collect()
+    }
+
+    /// The axis through the centre of the circle fitted to the level extremes (within
+    /// the tolerance) with the tilts of `parameters`: the paper's "line perpendicular to
+    /// the centre of the circle passing through these vertices".
+    pub fn edge_circle_axis(&self, parameters: &AxisParameters) -> Option<AxisParameters> {
+        let frame = CandidateFrame::new(&[parameters[0], parameters[1], 0.0, 0.0]);
+        let points = self.extreme_points(&frame);
+        let extreme = match self.edge {
+            Edge::Rim => points.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max),
+            Edge::Base => points.iter().map(|p| p.z).fold(f64::INFINITY, f64::min),
+        };
+        let level: Vec<&Point> = points.iter().filter(|p| (p.z - extreme).abs() < self.tolerance_mm).collect();
+        let xy: Vec<[f64; 2]> = level.iter().map(|p| [p.x, p.y]).collect();
+        let circle = fit_circle(&xy, CircleFitMethod::Geometric)?;
+        let height = level.iter().map(|p| p.z).sum::<f64>() / level.len() as f64;
+        Some(axis_through([parameters[0], parameters[1]], circle.center, height))
     }
 }
 
@@ -103,6 +127,32 @@ impl Objective for TangentObjective {
     }
 }
 
+/// Tolerance of the first, coarse levelling stage, mm: started a few degrees off, a rim
+/// 70 mm wide rises by several millimetres across the fragment, so that with the final
+/// epsilon fewer than three sections count and the cost is undefined everywhere around
+/// the start.
+const COARSE_TOLERANCE_MM: f64 = 30.0;
+
+/// Levels `edge` by the tilts: Eq. 7 with a coarse tolerance first, then with
+/// `tolerance_mm` from there. Returns the tilted parameters (shifts unchanged).
+pub fn level_edge(
+    surface: &PreparedSurface,
+    edge: Edge,
+    tolerance_mm: f64,
+    section_count: usize,
+    start: AxisParameters,
+    settings: &SearchSettings,
+    section_weights: Option<Vec<f64>>,
+) -> crate::Result<Minimum> {
+    let settings = SearchSettings { free: FreeParameters::TiltsOnly, ..*settings };
+    let mut objective = TangentObjective::new(surface, edge, tolerance_mm.max(COARSE_TOLERANCE_MM), section_count);
+    objective.section_weights = section_weights;
+    let coarse = minimize(&objective, start, &settings)?;
+    objective.tolerance_mm = tolerance_mm;
+    let fine = minimize(&objective, coarse.parameters, &settings)?;
+    Ok(Minimum { iterations: coarse.iterations + fine.iterations, ..fine })
+}
+
 /// Evidence that a fragment keeps a rim or base: the extremes of its vertical sections
 /// under a given axis lie on one horizontal plane.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -115,10 +165,16 @@ pub struct EdgeEvidence {
     pub spread_mm: f64,
 }
 
-/// Tests whether the fragment keeps `edge` around the start axis of `surface`.
-pub fn edge_evidence(surface: &PreparedSurface, edge: Edge, tolerance_mm: f64, section_count: usize) -> EdgeEvidence {
+/// Tests whether the fragment keeps `edge` level under the axis `parameters` of `surface`.
+pub fn edge_evidence(
+    surface: &PreparedSurface,
+    edge: Edge,
+    tolerance_mm: f64,
+    section_count: usize,
+    parameters: &AxisParameters,
+) -> EdgeEvidence {
     let objective = TangentObjective::new(surface, edge, tolerance_mm, section_count);
-    let mut extremes = objective.extremes(&CandidateFrame::new(&[0.0; 4]));
+    let mut extremes = objective.extremes(&CandidateFrame::new(parameters));
     if extremes.is_empty() {
         return EdgeEvidence { edge, level_fraction: 0.0, spread_mm: f64::INFINITY };
     }

@@ -39,7 +39,7 @@ pub struct BootstrapOptions {
 
 impl Default for BootstrapOptions {
     fn default() -> Self {
-        BootstrapOptions { samples: 40, seed: 0x5e4d, confidence: 0.95, spread_factor: 2.0 }
+        BootstrapOptions { samples: 24, seed: 0x5e4d, confidence: 0.95, spread_factor: 2.0 }
     }
 }
 
@@ -64,8 +64,8 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
     let settings = SearchSettings {
         free: options.free,
         tilt_bound_rad: options.search_bound_deg.to_radians(),
-        max_iterations: 150,
-        max_restarts: 1,
+        max_iterations: 80,
+        max_restarts: 0,
         ..Default::default()
     };
     let axes = (0..bootstrap.samples)
@@ -77,6 +77,8 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
             let mut start = [0.0; 4];
             let free = match (method, edge) {
                 (Criterion::Tangent, Some(edge)) if options.free != FreeParameters::ShiftsOnly => {
+                    // The estimate is level already: only the fine stage of Eq. 7 is
+                    // repeated (the coarse stage may jump to another set of sections).
                     let mut tangent =
                         TangentObjective::new(&surface, edge, options.tangent_tolerance_mm, options.vertical_section_count);
                     tangent.section_weights = Some(resample_weights(tangent.section_count(), &mut rng));

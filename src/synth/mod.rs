@@ -530,6 +530,25 @@ fn vessel_truth(profile: &VesselProfile, deformation: &Deformation) -> VesselTru
     }
 }
 
+/// Outer-skin extent (mm) below which a fragment counts as too small to orient.
+const TINY_EXTENT_MM: f64 = 25.0;
+
+/// The hard case a fragment is, when it was not asked for but came out so (a vessel's
+/// base pieces, slivers, pieces of a globular body): a flat base piece, a piece whose
+/// outer skin is under 25 mm across, or a piece lying wholly on a spherical zone.
+fn inferred_hard_case(profile: &VesselProfile, shell: &Shell, part: SherdPart) -> Option<HardCase> {
+    if part == SherdPart::Flat {
+        return Some(HardCase::FlatBase);
+    }
+    let outer = shell.positions.iter().zip(&shell.vertex_kinds).filter(|(_, kind)| **kind == SurfaceKind::Outer);
+    let (low, high) = outer.fold((Point::from([f64::INFINITY; 3]), Point::from([f64::NEG_INFINITY; 3])), |(low, high), (p, _)| (low.inf(p), high.sup(p)));
+    if (high - low).norm() < TINY_EXTENT_MM {
+        return Some(HardCase::Tiny);
+    }
+    let [band_low, band_high] = profile.spherical_band_s_mm()?;
+    (shell.s_range_mm[0] >= band_low && shell.s_range_mm[1] <= band_high).then_some(HardCase::NearSpherical)
+}
+
 /// What happens to a shell after it is built: colour, noise, motion.
 struct Surface {
     noise_mm: f64,
@@ -543,6 +562,7 @@ struct Surface {
 
 /// Colours, noise, motion, normals and truth for a shell.
 fn finish(seed: u64, shell: Shell, profile: &VesselProfile, deformation: &Deformation, part: SherdPart, surface: &Surface) -> SynthSherd {
+    let hard_case = surface.hard_case.or_else(|| inferred_hard_case(profile, &shell, part));
     let Shell { positions, triangles, vertex_kinds, face_kinds, .. } = shell;
     let mut mesh = Mesh::new(positions, triangles);
     if let Some(colour) = &surface.colour {
@@ -578,7 +598,7 @@ fn finish(seed: u64, shell: Shell, profile: &VesselProfile, deformation: &Deform
         profile: profile.skin_polyline(1.0, PROFILE_STEP_MM),
         inner_profile: profile.skin_polyline(-1.0, PROFILE_STEP_MM),
         part,
-        hard_case: surface.hard_case,
+        hard_case,
         noise_mm: surface.noise_mm,
         fragment_index: surface.fragment_index,
         deformation_bound_mm: deformation.bound_mm(profile.max_radius_mm()),

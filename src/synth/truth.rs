@@ -183,7 +183,9 @@ pub struct GroundTruth {
     pub inner_profile: Vec<[f64; 2]>,
     /// Which part of the vessel the fragment is.
     pub part: SherdPart,
-    /// Set when the fragment is one the orientation must refuse.
+    /// Set when the fragment is one the orientation must refuse: asked for, or come out
+    /// so (every flat base piece; a piece under 25 mm across; a piece lying wholly on a
+    /// globular vessel's spherical zone).
     pub hard_case: Option<HardCase>,
     /// Standard deviation of the Gaussian noise on every coordinate, mm.
     pub noise_mm: f64,

@@ -295,6 +295,88 @@ static void test_pipeline_misuse(void) {
     sherd_mesh_free(mesh);
 }
 
+static void test_refine_measure_draw_misuse(void) {
+    SherdMesh *mesh = make_mesh();
+    SherdAxis axis = z_axis();
+    SherdRefineOptions *refine_options = NULL;
+    SherdMeasureOptions *measure_options = NULL;
+    SherdDrawOptions *draw_options = NULL;
+    SherdRefinement *refinement = NULL;
+    SherdDrawing *drawing = NULL;
+    SherdMeasurements measurements;
+    SherdRefineReport summary;
+    SherdParetoPoint points[2];
+    SherdBuffer *buffer = NULL;
+    size_t count = 0;
+
+    memset(&measurements, 0, sizeof measurements);
+    memset(&summary, 0, sizeof summary);
+
+    /* Enum values out of range are refused by the setters, which keep the old value. */
+    CHECK_OK(sherd_refine_options_new(&refine_options));
+    CHECK_STATUS(sherd_refine_options_set_criterion(refine_options, 5u), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("`criterion` 5 is not a SHERD_CRITERION_* value");
+    CHECK_STATUS(sherd_refine_options_set_criterion(refine_options, 0xffffffffu), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_refine_options_set_surface(refine_options, 3u), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_refine_options_set_search_bound_deg(refine_options, 90.0), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_refine_options_set_search_bound_deg(refine_options, NAN), SHERD_STATUS_INVALID_ARGUMENT);
+    NULL_ARGUMENT(sherd_refine_options_set_criterion(NULL, 0), "options");
+    NULL_ARGUMENT(sherd_refine_options_new(NULL), "out_options");
+
+    CHECK_OK(sherd_draw_options_new(&draw_options));
+    CHECK_STATUS(sherd_draw_options_set_style(draw_options, 0u), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_draw_options_set_style(draw_options, 64u), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("SHERD_STYLE_");
+    CHECK_STATUS(sherd_draw_options_set_section_fill(draw_options, 2u), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_draw_options_set_placement(draw_options, 9u), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_draw_options_set_regularity(draw_options, 5u), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_draw_options_set_dpi(draw_options, 0.0), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("dpi");
+    CHECK_STATUS(sherd_draw_options_set_scale_denominator(draw_options, 0u), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_draw_options_set_section_angle_rad(draw_options, INFINITY), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_OK(sherd_draw_options_set_section_angle_rad(draw_options, NAN));
+    CHECK_OK(sherd_draw_options_set_title(draw_options, NULL));
+    CHECK_STATUS(sherd_draw_options_set_title(draw_options, "\xff\xfe"), SHERD_STATUS_INVALID_ARGUMENT);
+    NULL_ARGUMENT(sherd_draw_options_set_style(NULL, 1u), "options");
+    NULL_ARGUMENT(sherd_draw_options_new(NULL), "out_options");
+
+    CHECK_OK(sherd_measure_options_new(&measure_options));
+    CHECK_STATUS(sherd_measure_options_set_confidence(measure_options, 1.0), SHERD_STATUS_INVALID_ARGUMENT);
+    NULL_ARGUMENT(sherd_measure_options_set_refine_options(measure_options, NULL), "refine_options");
+    NULL_ARGUMENT(sherd_measure_options_set_refine_options(NULL, refine_options), "options");
+    CHECK_OK(sherd_measure_options_set_refine_options(measure_options, refine_options));
+
+    /* Entry points: NULL for each pointer, sizes not set. */
+    NULL_ARGUMENT(sherd_refine(NULL, &axis, NULL, &refinement), "mesh");
+    NULL_ARGUMENT(sherd_refine(mesh, NULL, NULL, &refinement), "axis");
+    NULL_ARGUMENT(sherd_refine(mesh, &axis, NULL, NULL), "out_refinement");
+    NULL_ARGUMENT(sherd_refinement_axis(NULL, &axis), "refinement");
+    NULL_ARGUMENT(sherd_refinement_report(NULL, &summary), "refinement");
+    NULL_ARGUMENT(sherd_refinement_report_json(NULL, &buffer), "refinement");
+    NULL_ARGUMENT(sherd_refinement_pareto_front(NULL, points, 2, &count), "refinement");
+    NULL_ARGUMENT(sherd_measure(NULL, &axis, NULL, &measurements, NULL), "mesh");
+    NULL_ARGUMENT(sherd_measure(mesh, NULL, NULL, &measurements, NULL), "axis");
+    NULL_ARGUMENT(sherd_measure(mesh, &axis, NULL, NULL, NULL), "out_measurements");
+    CHECK_STATUS(sherd_measure(mesh, &axis, measure_options, &measurements, NULL), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("`out_measurements->size` is 0");
+    NULL_ARGUMENT(sherd_drawing_build(NULL, &axis, NULL, &drawing), "mesh");
+    NULL_ARGUMENT(sherd_drawing_build(mesh, NULL, NULL, &drawing), "axis");
+    NULL_ARGUMENT(sherd_drawing_build(mesh, &axis, draw_options, NULL), "out_drawing");
+    NULL_ARGUMENT(sherd_drawing_write(NULL, "x.svg"), "drawing");
+    NULL_ARGUMENT(sherd_drawing_to_buffer(NULL, SHERD_FORMAT_SVG, &buffer), "drawing");
+    CHECK(refinement == NULL && drawing == NULL && buffer == NULL);
+
+    sherd_refine_options_free(refine_options);
+    sherd_measure_options_free(measure_options);
+    sherd_draw_options_free(draw_options);
+    sherd_refinement_free(NULL);
+    sherd_drawing_free(NULL);
+    sherd_measure_options_free(NULL);
+    sherd_draw_options_free(NULL);
+    sherd_refine_options_free(NULL);
+    sherd_mesh_free(mesh);
+}
+
 static void test_messages_survive_success(void) {
     SherdMesh *mesh = NULL;
     CHECK_STATUS(sherd_mesh_from_arrays(NULL, 4, triangles, 4, &mesh), SHERD_STATUS_NULL_POINTER);
@@ -310,6 +392,7 @@ int main(void) {
     test_short_buffers();
     test_axis_struct();
     test_pipeline_misuse();
+    test_refine_measure_draw_misuse();
     test_messages_survive_success();
     printf("test_misuse: ok\n");
     return 0;

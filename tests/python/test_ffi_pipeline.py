@@ -159,3 +159,26 @@ def test_reconstruction_export(tmp_path, oriented_rim):
     assert ring.vertex_count > 90 and radius.max() > 10
     # A revolution: every height has the same radii at every turn of 4 degrees.
     assert ring.vertex_count % 90 == 0 or ring.vertex_count % 90 <= 2
+
+
+SIGNATURES = {"svg": b"<svg", "eps": b"%!PS-Adobe", "pdf": b"%PDF-", "png": b"\x89PNG\r\n\x1a\n"}
+
+
+def test_drawing_in_each_format(tmp_path, oriented_rim):
+    mesh, _, axis = oriented_rim
+    with sherd.Drawing(mesh, axis, style="linear,light", dpi=72, section_fill="hatched",
+                       title="Python test sherd") as drawing:
+        for format, signature in SIGNATURES.items():
+            data = drawing.to_bytes(format)
+            assert (signature in data[:200]) if format == "svg" else data.startswith(signature)
+        assert b"Python test sherd" in drawing.to_bytes("svg")
+        drawing.write(tmp_path / "sherd.png")
+        assert (tmp_path / "sherd.png").read_bytes() == drawing.to_bytes("png")
+        with pytest.raises(sherd.InvalidArgumentError, match="unknown format"):
+            drawing.to_bytes("tiff")
+        with pytest.raises(sherd.InvalidArgumentError):
+            drawing.write(tmp_path / "sherd.tiff")
+    with pytest.raises(sherd.InvalidArgumentError, match="unknown style"):
+        sherd.Drawing(mesh, axis, style="watercolour")
+    with pytest.raises(sherd.InvalidArgumentError, match="dpi"):
+        sherd.Drawing(mesh, axis, style="linear", dpi=1)

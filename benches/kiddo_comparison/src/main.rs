@@ -2,6 +2,7 @@
 //! 500k-face benchmark torus's 250k vertices; the same spatial.rs is compiled in.
 //!
 //!     cd benches/kiddo_comparison && cargo run --release
+//!     cargo run --release -- --bvh     # only: time three BVH builds of the torus
 // spatial.rs refers to `super::{Mesh, Point, Vector}`: the crate root stands in for
 // sherd's mesh module with the little it uses.
 pub type Point = nalgebra::Point3<f64>;

@@ -22,6 +22,7 @@ from .errors import (
     Status,
     last_error_message,
 )
+from .draw import Drawing
 from .export import (export_oriented_ply, export_profile_csv, export_reconstruction_ply, most_informative_angle,
                      profile_csv, profile_section)
 from .mesh import Attribute, Mesh
@@ -36,7 +37,7 @@ if lib.sherd_abi_version() != ABI_VERSION:
 __version__ = lib.sherd_version().decode()
 
 __all__ = [
-    "Attribute", "Axis", "BufferTooSmallError", "DegenerateGeometryError", "InvalidArgumentError", "Mesh",
+    "Attribute", "Axis", "Drawing", "BufferTooSmallError", "DegenerateGeometryError", "InvalidArgumentError", "Mesh",
     "NeedsManualOrientationError", "NotAvailableError", "NotConvergedError", "NullPointerError", "PanicError",
     "ParseError", "SherdError", "SherdIOError", "Status", "export_oriented_ply", "export_profile_csv",
     "export_reconstruction_ply", "Measurements", "measure", "Refinement", "refine",

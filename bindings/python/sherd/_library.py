@@ -236,3 +236,25 @@ _declare("sherd_measure", Status, SherdMesh_p, SherdAxis_p, SherdOptions_p, ctyp
          ctypes.POINTER(SherdBuffer_p))
 _declare("sherd_export_reconstruction_ply", Status, SherdMesh_p, SherdAxis_p, ctypes.c_double, ctypes.c_size_t,
          ctypes.c_char_p, ctypes.c_bool)
+
+
+class SherdDrawing(ctypes.Structure):
+    """Opaque handle."""
+
+
+SherdDrawing_p = ctypes.POINTER(SherdDrawing)
+
+_declare("sherd_draw_options_new", Status, ctypes.POINTER(SherdOptions_p))
+_declare("sherd_draw_options_free", None, SherdOptions_p)
+_declare("sherd_draw_options_set_style", Status, SherdOptions_p, ctypes.c_uint32)
+_declare("sherd_draw_options_set_scale_denominator", Status, SherdOptions_p, ctypes.c_uint32)
+_declare("sherd_draw_options_set_dpi", Status, SherdOptions_p, ctypes.c_double)
+_declare("sherd_draw_options_set_section_angle_rad", Status, SherdOptions_p, ctypes.c_double)
+_declare("sherd_draw_options_set_section_fill", Status, SherdOptions_p, ctypes.c_uint32)
+_declare("sherd_draw_options_set_placement", Status, SherdOptions_p, ctypes.c_uint32)
+_declare("sherd_draw_options_set_regularity", Status, SherdOptions_p, ctypes.c_uint32)
+_declare("sherd_draw_options_set_title", Status, SherdOptions_p, ctypes.c_char_p)
+_declare("sherd_drawing_build", Status, SherdMesh_p, SherdAxis_p, SherdOptions_p, ctypes.POINTER(SherdDrawing_p))
+_declare("sherd_drawing_write", Status, SherdDrawing_p, ctypes.c_char_p)
+_declare("sherd_drawing_to_buffer", Status, SherdDrawing_p, ctypes.c_uint32, ctypes.POINTER(SherdBuffer_p))
+_declare("sherd_drawing_free", None, SherdDrawing_p)

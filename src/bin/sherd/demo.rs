@@ -38,7 +38,7 @@ pub struct DemoArgs {
 
 pub fn run(args: DemoArgs) -> Result<ExitCode, String> {
     std::fs::create_dir_all(&args.output).map_err(|e| format!("{}: {e}", args.output.display()))?;
-    let options = SherdOptions { target_faces: args.faces, part: Some(SherdPart::Rim), noise_mm: 0.05, ..Default::default() };
+    let options = SherdOptions { target_faces: args.faces, part: Some(SherdPart::Rim), noise_mm: 0.01, ..Default::default() };
     let sherd = synthetic_sherd(args.seed, &options);
     let scan = args.output.join("demo.ply");
     write_ply(&scan, &sherd.mesh, PlyEncoding::BinaryLittleEndian).map_err(|e| e.to_string())?;

@@ -1,0 +1,37 @@
+//! Pre-orientation + refinement of a ~10k-vertex synthetic rim sherd (the goal:
+//! under 200 ms), and each criterion alone from a start 3 degrees off.
+
+use criterion::{criterion_group, criterion_main, Criterion as Bench};
+use nalgebra::{Unit, UnitQuaternion};
+use sherd::mesh::Vector;
+use sherd::orient::{orient_automatic, Axis, OrientOptions};
+use sherd::refine::{refine, Criterion, RefineOptions};
+use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
+
+fn tilted(truth: &Axis) -> Axis {
+    let turn = Unit::new_normalize(truth.rotation_from_z() * Vector::x());
+    Axis::new(truth.point, UnitQuaternion::from_axis_angle(&turn, 3f64.to_radians()) * truth.direction.into_inner())
+}
+
+fn bench(c: &mut Bench) {
+    let sherd = synthetic_sherd(7, &SherdOptions { target_faces: 20_000, ..SherdOptions::for_part(SherdPart::Rim) });
+    eprintln!("bench sherd: {} vertices, {} faces", sherd.mesh.vertex_count(), sherd.mesh.face_count());
+    let mut group = c.benchmark_group("refine");
+    group.sample_size(10);
+    group.bench_function("orient_automatic + refine(Auto), 10k vertices", |b| {
+        b.iter(|| {
+            let orientation = orient_automatic(&sherd.mesh, &OrientOptions::default()).unwrap();
+            refine(&sherd.mesh, &orientation.axis, &RefineOptions::default()).unwrap()
+        })
+    });
+    let start = tilted(&sherd.truth.axis);
+    for criterion in [Criterion::Circles, Criterion::Tangent, Criterion::Profile, Criterion::Pareto] {
+        group.bench_function(format!("refine({criterion:?}) from 3 deg off"), |b| {
+            b.iter(|| refine(&sherd.mesh, &start, &RefineOptions { criterion, ..Default::default() }).unwrap())
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,77 @@
+"""The archaeological drawing: built once, written to files or to bytes in SVG, EPS,
+PDF or PNG."""
+
+import ctypes
+import os
+
+from . import _library as c
+from .errors import check
+from .options import Options, enum_value, take_buffer
+
+STYLES = {"linear": 1, "colour": 2, "color": 2, "light": 4, "occlusion": 8, "stipple": 16, "regularity": 32}
+FORMATS = {"svg": 0, "eps": 1, "pdf": 2, "png": 3}
+FILLS = {"black": 0, "hatched": 1}
+PLACEMENTS = {"beside": 0, "true_distance": 1}
+REGULARITY = {"axis_distance": 0, "ideal_vessel": 1}
+
+
+def _styles(value):
+    if isinstance(value, str):
+        value = [name.strip() for name in value.split(",") if name.strip()]
+    if isinstance(value, (list, tuple, set)):
+        bits = 0
+        for name in value:
+            bits |= enum_value(STYLES, name, "style")
+        return bits
+    return int(value)
+
+
+class Drawing:
+    """A finished drawing (``SherdDrawing``), freed when garbage-collected or on close."""
+
+    def __init__(self, mesh, axis, *, style="light,occlusion", scale_denominator=None, dpi=None,
+                 section_angle_rad=None, section_fill=None, placement=None, regularity=None, title=None):
+        """Builds the drawing of ``mesh`` oriented by ``axis``; ``style`` is a list or a
+        comma-separated string of linear, colour, light, occlusion, stipple, regularity."""
+        setters = {
+            "style": ("sherd_draw_options_set_style", _styles),
+            "scale_denominator": ("sherd_draw_options_set_scale_denominator", int),
+            "dpi": ("sherd_draw_options_set_dpi", float),
+            "section_angle_rad": ("sherd_draw_options_set_section_angle_rad", float),
+            "section_fill": ("sherd_draw_options_set_section_fill", lambda v: enum_value(FILLS, v, "section fill")),
+            "placement": ("sherd_draw_options_set_placement", lambda v: enum_value(PLACEMENTS, v, "placement")),
+            "regularity": ("sherd_draw_options_set_regularity", lambda v: enum_value(REGULARITY, v, "regularity")),
+            "title": ("sherd_draw_options_set_title", lambda v: v.encode("utf-8")),
+        }
+        values = dict(style=style, scale_denominator=scale_denominator, dpi=dpi, section_angle_rad=section_angle_rad,
+                      section_fill=section_fill, placement=placement, regularity=regularity, title=title)
+        self._handle = None
+        handle = c.SherdDrawing_p()
+        c_axis = axis.to_c()
+        with Options("draw", values, setters) as options:
+            check(c.lib.sherd_drawing_build(mesh.handle, ctypes.byref(c_axis), options, ctypes.byref(handle)))
+        self._handle = handle
+
+    def to_bytes(self, format="svg"):
+        """The drawing in ``format`` (svg, eps, pdf, png)."""
+        buffer = c.SherdBuffer_p()
+        check(c.lib.sherd_drawing_to_buffer(self._handle, enum_value(FORMATS, format, "format"), ctypes.byref(buffer)))
+        return take_buffer(buffer)
+
+    def write(self, path):
+        """Writes the drawing, the format chosen by the file's extension (atomically)."""
+        check(c.lib.sherd_drawing_write(self._handle, os.fsencode(path)))
+
+    def close(self):
+        handle, self._handle = getattr(self, "_handle", None), None
+        if handle:
+            c.lib.sherd_drawing_free(handle)
+
+    def __del__(self):
+        self.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()

@@ -1,0 +1,96 @@
+//! Measurements of synthetic sherds at their true axes, against the generator's truth.
+
+use sherd::mesh::{Mesh, Point};
+use sherd::orient::Axis;
+use sherd::profile::measure::{measure, MeasureOptions};
+use sherd::refine::uncertainty::BootstrapOptions;
+use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
+
+fn options(part: SherdPart) -> SherdOptions {
+    SherdOptions { target_faces: 8000, ..SherdOptions::for_part(part).ideal() }
+}
+
+/// Volume inside the revolved inner profile (base centre to rim), litres, by frustums.
+fn true_capacity_litres(inner_profile: &[[f64; 2]]) -> f64 {
+    inner_profile
+        .windows(2)
+        .map(|w| {
+            let ([r0, z0], [r1, z1]) = (w[0], w[1]);
+            std::f64::consts::PI * (z1 - z0) * (r0 * r0 + r0 * r1 + r1 * r1) / 3.0
+        })
+        .sum::<f64>()
+        * 1e-6
+}
+
+#[test]
+fn rim_sherd_measured_at_its_true_axis() {
+    let mut checked = 0;
+    for seed in 0..6 {
+        let sherd = synthetic_sherd(seed, &options(SherdPart::Rim));
+        if sherd.truth.part != SherdPart::Rim {
+            continue;
+        }
+        checked += 1;
+        let truth = &sherd.truth;
+        let m = measure(&sherd.mesh, &truth.axis, &MeasureOptions::default());
+        let rim_truth = truth.rim_radius_mm.expect("a rim sherd has a rim radius");
+        let rim = m.rim_radius_mm.unwrap_or_else(|| panic!("seed {seed}: rim not found: {:?}", m.notes));
+        assert!((rim - rim_truth).abs() < 0.01 * rim_truth, "seed {seed}: rim radius {rim} vs {rim_truth}");
+        assert_eq!(m.rim_diameter_mm, Some(2.0 * rim));
+        let [low, high] = m.rim_diameter_interval_mm.expect("an interval");
+        assert!(low < 2.0 * rim && 2.0 * rim < high && high - low < 0.1 * rim, "seed {seed}: interval [{low}, {high}] for {rim}, axis interval {:?}", m.axis_angle_interval_deg);
+        assert!((m.sector_angle_deg - truth.sector_angle_deg).abs() < 1.0, "sector {} vs {}", m.sector_angle_deg, truth.sector_angle_deg);
+        assert!((m.sector_percent - m.sector_angle_deg / 3.6).abs() < 1e-9);
+        assert!((m.height_mm - truth.height_mm).abs() < 0.5, "height {} vs {}", m.height_mm, truth.height_mm);
+        let wall = m.wall_thickness_mm.expect("a wall thickness");
+        let wall_truth = truth.vessel.wall_thickness_mm;
+        assert!((wall - wall_truth).abs() < 0.2 * wall_truth, "seed {seed}: wall {wall} vs {wall_truth}");
+        assert!(m.capacity_litres.is_none(), "a rim sherd has no capacity");
+        let [zero, angle] = m.axis_angle_interval_deg.expect("an axis interval");
+        assert!(zero == 0.0 && (0.0..5.0).contains(&angle), "axis interval {angle}");
+    }
+    assert!(checked >= 3, "only {checked} rim sherds generated");
+}
+
+#[test]
+fn complete_profile_gives_capacity() {
+    let mut checked = 0;
+    for seed in 0..12 {
+        let sherd = synthetic_sherd(seed, &options(SherdPart::RimToBase));
+        if sherd.truth.part != SherdPart::RimToBase {
+            continue;
+        }
+        let m = measure(&sherd.mesh, &sherd.truth.axis, &MeasureOptions { bootstrap: BootstrapOptions { samples: 0, ..Default::default() }, ..Default::default() });
+        // A round-bottomed vessel has no level base to recognise: no capacity then.
+        let Some(capacity) = m.capacity_litres else {
+            println!("seed {seed}: no capacity: {:?}", m.notes);
+            continue;
+        };
+        checked += 1;
+        let truth = true_capacity_litres(&sherd.truth.inner_profile);
+        assert!((capacity - truth).abs() < 0.05 * truth, "seed {seed}: capacity {capacity} l vs {truth} l");
+        let base_truth = sherd.truth.base_radius_mm.expect("a base radius");
+        let base = m.base_radius_mm.expect("a base radius");
+        // Known weakness: where the skin test drops the foot corner the widest point of the
+        // 1 mm band is taken, up to 4% wide of the truth on rounded feet.
+        assert!((base - base_truth).abs() < 0.05 * base_truth, "base radius {base} vs {base_truth}");
+    }
+    assert!(checked >= 2, "only {checked} complete profiles generated");
+}
+
+#[test]
+fn body_sherd_has_no_rim_base_or_capacity() {
+    let sherd = synthetic_sherd(3, &options(SherdPart::Body));
+    let m = measure(&sherd.mesh, &sherd.truth.axis, &MeasureOptions::default());
+    assert!(m.rim_radius_mm.is_none() && m.base_radius_mm.is_none() && m.capacity_litres.is_none(), "{m:?}");
+    assert!(m.notes.iter().any(|n| n.contains("no level rim")));
+    let json = serde_json::to_string(&m).unwrap();
+    assert!(json.contains("\"sector_angle_deg\""));
+}
+
+#[test]
+fn degenerate_mesh_is_reported_not_measured() {
+    let mesh = Mesh::new(vec![Point::origin(); 4], vec![]);
+    let m = measure(&mesh, &Axis::z(), &MeasureOptions::default());
+    assert!(m.rim_radius_mm.is_none() && m.notes.iter().any(|n| n.contains("too few vertices")), "{m:?}");
+}
