@@ -286,5 +286,61 @@ class SHERD_OT_add_axis_empty(SherdOperator, bpy.types.Operator):
         return {'FINISHED'}
 
 
-classes = (SHERD_OT_orient_automatic, SHERD_OT_orient_three_points, SHERD_OT_refine, SHERD_OT_measure,
+STYLE_ITEMS = [
+    ("linear", "Linear", "Outline and profile lines only"),
+    ("colour", "Colour", "The scan's colours"),
+    ("light", "Light", "Shading by a light from the upper left"),
+    ("occlusion", "Occlusion", "Ambient occlusion shading"),
+    ("stipple", "Stipple", "Stippled shading"),
+    ("regularity", "Regularity", "Deviation from a regular vessel as colour"),
+]
+
+
+def show_image(context, path):
+    """Loads a PNG and shows it in an Image Editor of the current screen, if one is open."""
+    image = bpy.data.images.load(path, check_existing=False)
+    screen = context.screen
+    for area in (screen.areas if screen is not None else ()):
+        if area.type == 'IMAGE_EDITOR':
+            area.spaces.active.image = image
+            break
+    return image
+
+
+class SHERD_OT_draw(SherdOperator, bpy.types.Operator):
+    """Write the archaeological drawing of the oriented sherd (SVG, EPS, PDF or PNG by
+    the file's extension); a PNG is opened in the Image Editor"""
+
+    bl_idname = "sherd.draw"
+    bl_label = "Draw"
+
+    filepath: bpy.props.StringProperty(name="File", subtype='FILE_PATH', default="//sherd.svg")
+    style: bpy.props.EnumProperty(name="Style", items=STYLE_ITEMS, options={'ENUM_FLAG'},
+                                  default={"light", "occlusion"})
+    scale_denominator: bpy.props.IntProperty(name="Scale 1:", default=1, min=1, max=1000)
+    dpi: bpy.props.FloatProperty(name="DPI", default=300.0, min=10.0, max=2400.0)
+
+    def run(self, context):
+        obj = active_mesh_object(context)
+        axis = stored_axis(obj)
+        path = bpy.path.abspath(self.filepath)
+        if not path or path.startswith("//"):
+            raise InputError("save the .blend file first or give an absolute path for the drawing")
+        if not self.style:
+            raise InputError("choose at least one drawing style")
+        with progress(context, 3) as update:
+            mesh, _ = library_mesh(obj)
+            update(1)
+            drawing = sherd().Drawing(mesh, axis, style=sorted(self.style),
+                                      scale_denominator=self.scale_denominator, dpi=self.dpi)
+            update(2)
+            drawing.write(path)
+        if path.lower().endswith(".png"):
+            show_image(context, path)
+        obj["sherd_drawing_path"] = path
+        self.notify({'INFO'}, f"drawing written to {path}")
+        return {'FINISHED'}
+
+
+classes = (SHERD_OT_draw, SHERD_OT_orient_automatic, SHERD_OT_orient_three_points, SHERD_OT_refine, SHERD_OT_measure,
            SHERD_OT_apply_orientation, SHERD_OT_add_axis_empty)
