@@ -20,3 +20,11 @@ trap 'rm -rf "$scripts"' EXIT
 # The add-on must find its bundled library, not one named by the environment.
 env -u SHERD_LIBRARY BLENDER_USER_SCRIPTS="$scripts" \
   "$blender" -b --factory-startup --python-exit-code 1 --python tests/blender/test_addon_blender.py
+
+# Blender 4.2+ as the bpy wheel (pip install bpy==4.2.0 in a Python 3.11 venv): the
+# extension zip through Blender's extension installer, when SHERD_BPY_PYTHON names that Python.
+if [ -n "${SHERD_BPY_PYTHON:-}" ]; then
+  home=$(mktemp -d)
+  trap 'rm -rf "$scripts" "$home"' EXIT
+  env -u SHERD_LIBRARY HOME="$home" "$SHERD_BPY_PYTHON" tests/blender/test_addon_blender.py
+fi

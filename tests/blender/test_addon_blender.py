@@ -24,14 +24,27 @@ REAL_SCAN = ROOT.parent / "shared" / "data" / "dacord" / "A011.ply"
 
 
 def install_addon():
-    assert ZIP.is_file(), f"{ZIP} is missing: run addons/blender/build.sh"
-    assert bpy.ops.preferences.addon_install(filepath=str(ZIP), overwrite=True) == {'FINISHED'}
-    assert bpy.ops.preferences.addon_enable(module="sherd_blender") == {'FINISHED'}
-    import sherd_blender
-    from sherd_blender import operators, sherd as vendored
+    """Blender 4.2+ (e.g. the bpy wheel): the extension zip with Blender's extension
+    installer; Blender 3.x: the legacy add-on zip."""
+    import importlib
+    if bpy.app.version >= (4, 2, 0):
+        package = Path(os.environ.get("SHERD_EXTENSION_ZIP", ZIP.parent / "sherd_extension.zip"))
+        assert package.is_file(), f"{package} is missing: run addons/blender/build.sh"
+        assert bpy.ops.extensions.package_install_files(
+            filepath=str(package), repo="user_default", enable_on_install=True) == {'FINISHED'}
+        module = "bl_ext.user_default.sherd"
+    else:
+        assert ZIP.is_file(), f"{ZIP} is missing: run addons/blender/build.sh"
+        assert bpy.ops.preferences.addon_install(filepath=str(ZIP), overwrite=True) == {'FINISHED'}
+        assert bpy.ops.preferences.addon_enable(module="sherd_blender") == {'FINISHED'}
+        module = "sherd_blender"
+    addon = importlib.import_module(module)
+    operators = importlib.import_module(f"{module}.operators")
+    vendored = importlib.import_module(f"{module}.sherd")
     # The bundled library, not one found elsewhere (run.sh unsets SHERD_LIBRARY).
-    assert Path(vendored.__file__).parent.parent == Path(sherd_blender.__file__).parent
+    assert Path(vendored.__file__).parent.parent == Path(addon.__file__).parent
     assert (Path(vendored.__file__).parent / "libsherd.so").is_file()
+    print(f"Blender {bpy.app.version_string}: {module} enabled")
     return vendored, operators
 
 
