@@ -14,7 +14,7 @@ root=$(pwd)
 step() { printf '\n==> %s\n' "$*"; }
 
 step "system packages"
-packages=(ghostscript valgrind libgl1 libglu1-mesa pkg-config blender)
+packages=(ghostscript valgrind libgl1 libglu1-mesa pkg-config blender python3-numpy)
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then
@@ -50,5 +50,7 @@ step "Python tests"
 if compgen -G "tests/python/test_*.py" >/dev/null; then
   python3 -m pytest -q tests/python
 fi
+
+step "Blender add-on (headless Blender)"; bash tests/blender/run.sh
 
 step "all tests passed"

@@ -114,10 +114,11 @@ class SherdOperator:
 
     bl_options = {'REGISTER', 'UNDO'}
 
-    def report(self, types, message):
+    def notify(self, types, message):
+        """``report`` that also records in :data:`REPORTS` (RNA's ``report`` cannot be overridden)."""
         REPORTS.append((set(types), message))
         del REPORTS[:-100]
-        super().report(types, message)
+        self.report(types, message)
 
     @classmethod
     def poll(cls, context):
@@ -128,23 +129,25 @@ class SherdOperator:
         try:
             return self.run(context)
         except InputError as error:
-            self.report({'ERROR'}, str(error))
+            self.notify({'ERROR'}, str(error))
         except LibraryMissingError as error:
-            self.report({'ERROR'}, str(error))
+            self.notify({'ERROR'}, str(error))
         except Exception as error:  # noqa: BLE001 - only sherd's own errors are reported, others re-raised
             if not is_sherd_error(error):
                 raise
-            self.report({'ERROR'}, f"sherd: {error}")
+            self.notify({'ERROR'}, f"sherd: {error}")
         return {'CANCELLED'}
 
 
 def _finish_orientation(operator, obj, orientation, source):
     if not orientation.oriented:
-        operator.report({'WARNING'}, f"needs manual orientation: {orientation.reason}")
+        operator.notify({'WARNING'}, f"needs manual orientation: {orientation.reason}")
         return {'CANCELLED'}
     store_axis(obj, orientation.axis, source)
     obj["sherd_angle_uncertainty_deg"] = float(orientation.angle_uncertainty_deg)
-    operator.report({'INFO'}, f"oriented ({source}), uncertainty {orientation.angle_uncertainty_deg:.2f} deg")
+    uncertainty = orientation.angle_uncertainty_deg
+    known = f", uncertainty {uncertainty:.2f} deg" if math.isfinite(uncertainty) else ""
+    operator.notify({'INFO'}, f"oriented ({source}){known}")
     return {'FINISHED'}
 
 
@@ -203,7 +206,7 @@ class SHERD_OT_refine(SherdOperator, bpy.types.Operator):
         obj["sherd_refine_residual_mm"] = float(refinement.residual_mm)
         obj["sherd_refine_tilt_deg"] = float(refinement.tilt_deg)
         obj["sherd_pareto_point_count"] = len(refinement.pareto_front)
-        self.report({'INFO'}, f"refined: tilt {refinement.tilt_deg:.2f} deg, residual {refinement.residual_mm:.3f} mm")
+        self.notify({'INFO'}, f"refined: tilt {refinement.tilt_deg:.2f} deg, residual {refinement.residual_mm:.3f} mm")
         return {'FINISHED'}
 
 
@@ -238,7 +241,7 @@ class SHERD_OT_measure(SherdOperator, bpy.types.Operator):
                 obj[key] = value
             elif key in obj:
                 del obj[key]
-        self.report({'INFO'}, "measured")
+        self.notify({'INFO'}, "measured")
         return {'FINISHED'}
 
 
@@ -283,5 +286,61 @@ class SHERD_OT_add_axis_empty(SherdOperator, bpy.types.Operator):
         return {'FINISHED'}
 
 
-classes = (SHERD_OT_orient_automatic, SHERD_OT_orient_three_points, SHERD_OT_refine, SHERD_OT_measure,
+STYLE_ITEMS = [
+    ("linear", "Linear", "Outline and profile lines only"),
+    ("colour", "Colour", "The scan's colours"),
+    ("light", "Light", "Shading by a light from the upper left"),
+    ("occlusion", "Occlusion", "Ambient occlusion shading"),
+    ("stipple", "Stipple", "Stippled shading"),
+    ("regularity", "Regularity", "Deviation from a regular vessel as colour"),
+]
+
+
+def show_image(context, path):
+    """Loads a PNG and shows it in an Image Editor of the current screen, if one is open."""
+    image = bpy.data.images.load(path, check_existing=False)
+    screen = context.screen
+    for area in (screen.areas if screen is not None else ()):
+        if area.type == 'IMAGE_EDITOR':
+            area.spaces.active.image = image
+            break
+    return image
+
+
+class SHERD_OT_draw(SherdOperator, bpy.types.Operator):
+    """Write the archaeological drawing of the oriented sherd (SVG, EPS, PDF or PNG by
+    the file's extension); a PNG is opened in the Image Editor"""
+
+    bl_idname = "sherd.draw"
+    bl_label = "Draw"
+
+    filepath: bpy.props.StringProperty(name="File", subtype='FILE_PATH', default="//sherd.svg")
+    style: bpy.props.EnumProperty(name="Style", items=STYLE_ITEMS, options={'ENUM_FLAG'},
+                                  default={"light", "occlusion"})
+    scale_denominator: bpy.props.IntProperty(name="Scale 1:", default=1, min=1, max=1000)
+    dpi: bpy.props.FloatProperty(name="DPI", default=300.0, min=10.0, max=2400.0)
+
+    def run(self, context):
+        obj = active_mesh_object(context)
+        axis = stored_axis(obj)
+        path = bpy.path.abspath(self.filepath)
+        if not path or path.startswith("//"):
+            raise InputError("save the .blend file first or give an absolute path for the drawing")
+        if not self.style:
+            raise InputError("choose at least one drawing style")
+        with progress(context, 3) as update:
+            mesh, _ = library_mesh(obj)
+            update(1)
+            drawing = sherd().Drawing(mesh, axis, style=sorted(self.style),
+                                      scale_denominator=self.scale_denominator, dpi=self.dpi)
+            update(2)
+            drawing.write(path)
+        if path.lower().endswith(".png"):
+            show_image(context, path)
+        obj["sherd_drawing_path"] = path
+        self.notify({'INFO'}, f"drawing written to {path}")
+        return {'FINISHED'}
+
+
+classes = (SHERD_OT_draw, SHERD_OT_orient_automatic, SHERD_OT_orient_three_points, SHERD_OT_refine, SHERD_OT_measure,
            SHERD_OT_apply_orientation, SHERD_OT_add_axis_empty)

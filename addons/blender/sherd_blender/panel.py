@@ -12,6 +12,11 @@ class SherdSettings(bpy.types.PropertyGroup):
 
     criterion: bpy.props.EnumProperty(name="Criterion", items=operators.CRITERION_ITEMS, default="auto")
     surface: bpy.props.EnumProperty(name="Surface", items=operators.SURFACE_ITEMS, default="both")
+    drawing_path: bpy.props.StringProperty(name="File", subtype='FILE_PATH', default="//sherd.svg")
+    drawing_style: bpy.props.EnumProperty(name="Style", items=operators.STYLE_ITEMS, options={'ENUM_FLAG'},
+                                          default={"light", "occlusion"})
+    drawing_scale_denominator: bpy.props.IntProperty(name="Scale 1:", default=1, min=1, max=1000)
+    drawing_dpi: bpy.props.FloatProperty(name="DPI", default=300.0, min=10.0, max=2400.0)
 
 
 def _row(layout, label, value, unit):
@@ -72,6 +77,17 @@ class SHERD_PT_panel(bpy.types.Panel):
             _row(box, "Height", f"{obj[keys['height_mm']]:.1f}", "mm")
         if keys["capacity_litres"] in obj:
             _row(box, "Capacity", f"{obj[keys['capacity_litres']]:.3f}", "l")
+
+        box = layout.box()
+        box.prop(settings, "drawing_style")
+        box.prop(settings, "drawing_scale_denominator")
+        box.prop(settings, "drawing_dpi")
+        box.prop(settings, "drawing_path")
+        draw = box.operator(operators.SHERD_OT_draw.bl_idname)
+        draw.filepath = settings.drawing_path
+        draw.style = settings.drawing_style
+        draw.scale_denominator = settings.drawing_scale_denominator
+        draw.dpi = settings.drawing_dpi
 
 
 classes = (SherdSettings, SHERD_PT_panel)
