@@ -1429,6 +1429,40 @@ SherdStatus sherd_draw_options_set_views(SherdDrawOptions *options,
 SherdStatus sherd_draw_options_set_title(SherdDrawOptions *options, const char *title);
 
 /**
+ * Reads, repairs, orients, refines and measures the scan at `path`, exactly as
+ * `sherd orient SCAN --json` does: `*out_record_json` (or NULL) receives the same JSON
+ * object the command prints, `out_axis` (its `size` set, or NULL) the final axis in the
+ * scan's frame and units. `refine_options` may be NULL (criterion AUTO);
+ * `millimetres_per_unit` is 1 for scans in millimetres.
+ *
+ * Returns `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` (record written, no axis) when the
+ * sherd does not determine its axis, and `SHERD_STATUS_INVALID_ARGUMENT` with the
+ * record's error when the scan cannot be read or processed.
+ *
+ * # Safety
+ * `path` must be a NUL-terminated string; `refine_options` NULL or live; the
+ * out-pointers NULL or writable (`out_axis` with its `size` set).
+ */
+SherdStatus sherd_process_file(const char *path,
+                               const SherdRefineOptions *refine_options,
+                               double millimetres_per_unit,
+                               SherdAxis *out_axis,
+                               SherdBuffer **out_record_json);
+
+/**
+ * Like `sherd_process_file` for a mesh the host already holds (its record's `file` is
+ * `"<memory>"`); `mesh` is not changed (the pipeline repairs a copy).
+ *
+ * # Safety
+ * `mesh` must be a live handle; otherwise as for `sherd_process_file`.
+ */
+SherdStatus sherd_analyse(const SherdMesh *mesh,
+                          const SherdRefineOptions *refine_options,
+                          double millimetres_per_unit,
+                          SherdAxis *out_axis,
+                          SherdBuffer **out_record_json);
+
+/**
  * Refines `axis` (from `sherd_orient_*`) on `mesh` with the criterion and surface of
  * `options` (NULL: the defaults, criterion AUTO on both surfaces). The result handle
  * `*out_refinement` gives the refined axis, the report and the Pareto front.

@@ -1,0 +1,105 @@
+//! The whole pipeline in one call (`pipeline`): what `sherd orient --json` does, for
+//! hosts that want the command-line tool's record without running it.
+
+use std::ffi::c_char;
+
+use super::buffer::{SherdBuffer, hand_out_report};
+use super::error::{Failure, FfiResult};
+use super::mesh::{SherdMesh, mesh_ref};
+use super::options::SherdRefineOptions;
+use super::orient::SherdAxis;
+use super::panic::guard;
+use super::pointers::{borrow, checked_size, path_from, write_sized};
+use super::status::SherdStatus;
+use crate::orient::Axis;
+use crate::pipeline::{PipelineOptions, STATUS_ERROR, STATUS_NEEDS_MANUAL, SherdRecord};
+
+/// The pipeline's options: scan units and the refinement (NULL: the command-line tool's
+/// default, criterion AUTO on both surfaces).
+unsafe fn pipeline_options(refine_options: *const SherdRefineOptions, millimetres_per_unit: f64) -> FfiResult<PipelineOptions> {
+    if !(millimetres_per_unit.is_finite() && millimetres_per_unit > 0.0) {
+        return Err(Failure::invalid(format!(
+            "`millimetres_per_unit` must be finite and positive (1 for mm, 10 for cm), got {millimetres_per_unit}"
+        )));
+    }
+    let refine = if refine_options.is_null() {
+        Default::default()
+    } else {
+        unsafe { borrow(refine_options, "refine_options") }?.options.clone()
+    };
+    let mut options = PipelineOptions { millimetres_per_unit, ..Default::default() };
+    options.measure.refine = refine.clone();
+    options.refine = Some(refine);
+    Ok(options)
+}
+
+/// Hands the record to the host: its axis (scan frame and units) when it has one, the
+/// record as JSON, and the status its `status` field says.
+unsafe fn hand_out_record(record: &SherdRecord, out_axis: *mut SherdAxis, out_record_json: *mut *mut SherdBuffer) -> FfiResult {
+    if let (false, Some(axis)) = (out_axis.is_null(), record.axis.as_ref().and_then(Axis::from_record)) {
+        unsafe { write_sized(out_axis, SherdAxis::from_axis(&axis), "out_axis") }?;
+    }
+    unsafe { hand_out_report(out_record_json, record) }?;
+    match record.status.as_str() {
+        STATUS_ERROR => Err(Failure::new(SherdStatus::InvalidArgument, record.error.clone().unwrap_or_default())),
+        STATUS_NEEDS_MANUAL => Err(Failure::new(SherdStatus::NeedsManualOrientation, record.reason.clone().unwrap_or_default())),
+        _ => Ok(()),
+    }
+}
+
+/// Reads, repairs, orients, refines and measures the scan at `path`, exactly as
+/// `sherd orient SCAN --json` does: `*out_record_json` (or NULL) receives the same JSON
+/// object the command prints, `out_axis` (its `size` set, or NULL) the final axis in the
+/// scan's frame and units. `refine_options` may be NULL (criterion AUTO);
+/// `millimetres_per_unit` is 1 for scans in millimetres.
+///
+/// Returns `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` (record written, no axis) when the
+/// sherd does not determine its axis, and `SHERD_STATUS_INVALID_ARGUMENT` with the
+/// record's error when the scan cannot be read or processed.
+///
+/// # Safety
+/// `path` must be a NUL-terminated string; `refine_options` NULL or live; the
+/// out-pointers NULL or writable (`out_axis` with its `size` set).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_process_file(
+    path: *const c_char,
+    refine_options: *const SherdRefineOptions,
+    millimetres_per_unit: f64,
+    out_axis: *mut SherdAxis,
+    out_record_json: *mut *mut SherdBuffer,
+) -> SherdStatus {
+    guard("sherd_process_file", || {
+        let path = unsafe { path_from(path, "path") }?;
+        let options = unsafe { pipeline_options(refine_options, millimetres_per_unit) }?;
+        if !out_axis.is_null() {
+            checked_size(out_axis.cast_const(), "out_axis")?;
+        }
+        let record = crate::pipeline::process_file(&path, &options, None);
+        unsafe { hand_out_record(&record, out_axis, out_record_json) }
+    })
+}
+
+/// Like `sherd_process_file` for a mesh the host already holds (its record's `file` is
+/// `"<memory>"`); `mesh` is not changed (the pipeline repairs a copy).
+///
+/// # Safety
+/// `mesh` must be a live handle; otherwise as for `sherd_process_file`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_analyse(
+    mesh: *const SherdMesh,
+    refine_options: *const SherdRefineOptions,
+    millimetres_per_unit: f64,
+    out_axis: *mut SherdAxis,
+    out_record_json: *mut *mut SherdBuffer,
+) -> SherdStatus {
+    guard("sherd_analyse", || {
+        let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
+        let options = unsafe { pipeline_options(refine_options, millimetres_per_unit) }?;
+        if !out_axis.is_null() {
+            checked_size(out_axis.cast_const(), "out_axis")?;
+        }
+        let analysis = crate::pipeline::analyse(mesh.clone(), &options)?;
+        let record = SherdRecord::from_analysis("<memory>".into(), &analysis, options.scale());
+        unsafe { hand_out_record(&record, out_axis, out_record_json) }
+    })
+}
