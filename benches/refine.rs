@@ -27,7 +27,8 @@ fn bench(c: &mut Bench) {
     let start = tilted(&sherd.truth.axis);
     for criterion in [Criterion::Circles, Criterion::Tangent, Criterion::Profile, Criterion::Pareto] {
         group.bench_function(format!("refine({criterion:?}) from 3 deg off"), |b| {
-            b.iter(|| refine(&sherd.mesh, &start, &RefineOptions { criterion, ..Default::default() }).unwrap())
+            // A criterion may refuse this sherd (an error is an answer, and its cost is measured too).
+            b.iter(|| std::hint::black_box(refine(&sherd.mesh, &start, &RefineOptions { criterion, ..Default::default() }).is_ok()))
         });
     }
     group.finish();

