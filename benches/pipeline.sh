@@ -20,7 +20,7 @@ measure() { # label, command...: prints "| label | seconds | MiB |"
   printf '| %s | %.2f | %.0f |\n' "$label" "$seconds" "$((kib / 1024))"
 }
 
-"$sherd" synth "$work/big" --count 1 --seed 3 --faces 500000 --part rim >/dev/null
+"$sherd" synth -o "$work/big" --count 1 --seed 3 --faces 500000 --part rim >/dev/null
 big=$(ls "$work"/big/*.ply | head -n 1)
 echo "| step (500k-face scan: $(basename "$big")) | wall s | peak MiB |"
 echo "|---|---|---|"
@@ -32,7 +32,7 @@ measure "sherd draw --axis (all styles, PNG 300 dpi)" "$sherd" draw "$big" --axi
 measure "sherd draw (whole pipeline, linear, SVG)" "$sherd" draw "$big" -o "$work/big2.svg"
 
 echo
-"$sherd" synth "$work/batch" --count "$count" --seed 100 --faces 200000 >/dev/null
+"$sherd" synth -o "$work/batch" --count "$count" --seed 100 --faces 200000 >/dev/null
 start=$(date +%s.%N)
 measure "sherd batch: $count sherds of 200k faces, SVG drawings, 2 jobs" "$sherd" batch "$work/batch" -o "$work/out" --jobs 2
 end=$(date +%s.%N)
