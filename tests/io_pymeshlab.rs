@@ -9,16 +9,7 @@ use std::process::Command;
 use sherd::mesh::io::{PlyEncoding, read_mesh, write_ply};
 use sherd::mesh::{Mesh, Point, Vector};
 
-fn pymeshlab_available() -> bool {
-    let found = Command::new("python3").args(["-c", "import pymeshlab"]).output().is_ok_and(|o| o.status.success());
-    if !found {
-        if std::env::var("SHERD_REQUIRE_PYMESHLAB").as_deref() == Ok("1") {
-            panic!("pymeshlab is required (SHERD_REQUIRE_PYMESHLAB=1) but `python3 -c 'import pymeshlab'` fails");
-        }
-        println!("SKIPPED: pymeshlab is not installed (pip install pymeshlab)");
-    }
-    found
-}
+mod support;
 
 /// Runs a Python snippet with `sys.argv[1:] = arguments` and parses its last stdout line as JSON.
 fn python_json(script: &str, arguments: &[&Path]) -> serde_json::Value {
@@ -78,7 +69,7 @@ print(json.dumps(out))
 
 #[test]
 fn meshlab_loads_what_sherd_writes() {
-    if !pymeshlab_available() {
+    if !support::pymeshlab_available("io_pymeshlab") {
         return;
     }
     let mesh = wavy_grid();
@@ -101,7 +92,7 @@ fn meshlab_loads_what_sherd_writes() {
 
 #[test]
 fn sherd_reads_what_meshlab_writes() {
-    if !pymeshlab_available() {
+    if !support::pymeshlab_available("io_pymeshlab") {
         return;
     }
     let mesh = wavy_grid();

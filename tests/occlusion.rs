@@ -14,13 +14,7 @@ fn shared_data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data")
 }
 
-fn pymeshlab_available() -> bool {
-    let ok = Command::new("python3").args(["-c", "import pymeshlab"]).output().map(|o| o.status.success()).unwrap_or(false);
-    if !ok && std::env::var("SHERD_REQUIRE_PYMESHLAB").as_deref() == Ok("1") {
-        panic!("SHERD_REQUIRE_PYMESHLAB=1 but python3 cannot import pymeshlab");
-    }
-    ok
-}
+mod support;
 
 /// Ranks with ties averaged.
 fn ranks(values: &[f64]) -> Vec<f64> {
@@ -70,7 +64,7 @@ fn occlusion_ranks_agree_with_meshlab_on_a_real_sherd() {
         println!("SKIP: {} is absent", scan.display());
         return;
     }
-    if !pymeshlab_available() {
+    if !support::pymeshlab_available("occlusion") {
         println!("SKIP: pymeshlab is not installed (set SHERD_REQUIRE_PYMESHLAB=1 to fail instead)");
         return;
     }
