@@ -19,6 +19,8 @@ import numpy as np
 from mathutils import Matrix
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tests" / "support"))
+from rim_points import pick_rim_vertices  # noqa: E402 - the path is set just above
 ZIP = Path(os.environ.get("SHERD_BLENDER_ZIP", ROOT / "target" / "blender" / "sherd_blender.zip"))
 REAL_SCAN = ROOT.parent / "shared" / "data" / "dacord" / "A011.ply"
 
@@ -192,14 +194,7 @@ def test_synthetic_sherd(vendored, operators):
     # The manual method: three rim vertices picked as a user would, then 2 (refused).
     clear_scene()
     obj = add_mesh_object("manual", mesh.positions, mesh.triangles)
-    matrix = mesh.oriented_transform(truth)
-    oriented = mesh.positions @ matrix[:3, :3].T + matrix[:3, 3]
-    angles = np.arctan2(oriented[:, 1], oriented[:, 0])
-    share = 3 * (angles - angles.min()) / (angles.max() - angles.min())
-    picked = []
-    for third in range(3):
-        candidates = np.flatnonzero(np.abs(share - third - 0.5) < 0.3)
-        picked.append(int(candidates[np.argmax(oriented[candidates, 2])]))
+    picked = pick_rim_vertices(mesh.positions, mesh.oriented_transform(truth))
     select_vertices(obj, picked)
     bpy.ops.object.mode_set(mode='EDIT')
     assert bpy.ops.sherd.orient_three_points() == {'FINISHED'}, operators.REPORTS[-1:]
