@@ -104,6 +104,17 @@ def progress(context, steps):
         window_manager.progress_end()
 
 
+def with_stored_axis(context, call):
+    """Runs ``call(mesh, axis)`` on the active mesh object's world arrays and its stored
+    axis, with progress; returns ``(object, mesh, axis, call's result)``."""
+    obj = active_mesh_object(context)
+    axis = stored_axis(obj)
+    with progress(context, 2) as update:
+        mesh, _ = library_mesh(obj)
+        update(1)
+        return obj, mesh, axis, call(mesh, axis)
+
+
 #: The reports of the Sherd operators, newest last, as ``(types, message)`` (Blender
 #: gives scripts no access to an operator's reports; tests and scripts read them here).
 REPORTS = []
@@ -196,12 +207,8 @@ class SHERD_OT_refine(SherdOperator, bpy.types.Operator):
     surface: bpy.props.EnumProperty(name="Surface", items=SURFACE_ITEMS, default="both")
 
     def run(self, context):
-        obj = active_mesh_object(context)
-        axis = stored_axis(obj)
-        with progress(context, 2) as update:
-            mesh, _ = library_mesh(obj)
-            update(1)
-            refinement = sherd().refine(mesh, axis, criterion=self.criterion, surface=self.surface)
+        obj, _, _, refinement = with_stored_axis(
+            context, lambda mesh, axis: sherd().refine(mesh, axis, criterion=self.criterion, surface=self.surface))
         store_axis(obj, refinement.axis, f"refined ({refinement.criterion}, {refinement.surface})")
         obj["sherd_refine_residual_mm"] = float(refinement.residual_mm)
         obj["sherd_refine_tilt_deg"] = float(refinement.tilt_deg)
@@ -222,12 +229,7 @@ class SHERD_OT_measure(SherdOperator, bpy.types.Operator):
     bl_label = "Measure"
 
     def run(self, context):
-        obj = active_mesh_object(context)
-        axis = stored_axis(obj)
-        with progress(context, 2) as update:
-            mesh, _ = library_mesh(obj)
-            update(1)
-            measurements = sherd().measure(mesh, axis)
+        obj, _, _, measurements = with_stored_axis(context, lambda mesh, axis: sherd().measure(mesh, axis))
         for field, key in MEASUREMENT_KEYS.items():
             value = getattr(measurements, field)
             # A figure the fragment does not determine (NaN) is removed, not stored as a number.
@@ -363,14 +365,10 @@ class SHERD_OT_reconstruct(SherdOperator, bpy.types.Operator):
                                     default=180, min=3, max=3600)
 
     def run(self, context):
-        obj = active_mesh_object(context)
-        axis = stored_axis(obj)
-        with progress(context, 2) as update:
-            mesh, _ = library_mesh(obj)
-            update(1)
-            vessel = sherd().reconstruct(mesh, axis, segments=self.segments)
-            # The library gives the vessel in the oriented frame of the world positions.
-            to_oriented = mesh.oriented_transform(axis)
+        obj, mesh, axis, vessel = with_stored_axis(
+            context, lambda mesh, axis: sherd().reconstruct(mesh, axis, segments=self.segments))
+        # The library gives the vessel in the oriented frame of the world positions.
+        to_oriented = mesh.oriented_transform(axis)
         data = bpy.data.meshes.new(f"{obj.name} vessel")
         data.from_pydata(vessel.positions.tolist(), [], vessel.triangles.tolist())
         data.update()
@@ -400,12 +398,7 @@ class SHERD_OT_regularity(SherdOperator, bpy.types.Operator):
     kind: bpy.props.EnumProperty(name="Map", items=REGULARITY_ITEMS, default="ideal_vessel")
 
     def run(self, context):
-        obj = active_mesh_object(context)
-        axis = stored_axis(obj)
-        with progress(context, 2) as update:
-            mesh, _ = library_mesh(obj)
-            update(1)
-            regularity = sherd().regularity(mesh, axis, self.kind)
+        obj, _, _, regularity = with_stored_axis(context, lambda mesh, axis: sherd().regularity(mesh, axis, self.kind))
         editing = obj.mode == 'EDIT'
         if editing:
             # Attributes written in Edit Mode would be overwritten by the edit mesh.
