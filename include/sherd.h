@@ -1176,7 +1176,8 @@ void sherd_orient_options_free(SherdOrientOptions *options);
 SherdStatus sherd_orient_options_set_target_vertex_count(SherdOrientOptions *options, size_t count);
 
 /**
- * Laplacian smoothing iterations of the working copy (default 5; 0 disables).
+ * Laplacian smoothing iterations of the working copy (default 5; 0 disables; at most
+ * 1000).
  *
  * # Safety
  * `options` must be a live handle.
@@ -1263,7 +1264,8 @@ SherdStatus sherd_refine_options_set_criterion(SherdRefineOptions *options, uint
 SherdStatus sherd_refine_options_set_surface(SherdRefineOptions *options, uint32_t surface);
 
 /**
- * Number of horizontal sections; 0 lets the library choose from the sherd's height.
+ * Number of horizontal sections (at most 10000); 0 lets the library choose from the
+ * sherd's height.
  *
  * # Safety
  * `options` must be a live handle.
@@ -1309,8 +1311,8 @@ SherdStatus sherd_measure_options_set_refine_options(SherdMeasureOptions *option
                                                      const SherdRefineOptions *refine_options);
 
 /**
- * Number of bootstrap resamples behind the intervals; 0 gives no intervals (NaN), and
- * so do fewer than 5 usable resamples.
+ * Number of bootstrap resamples behind the intervals (at most 10000); 0 gives no
+ * intervals (NaN), and so do fewer than 5 usable resamples.
  *
  * # Safety
  * `options` must be a live handle.

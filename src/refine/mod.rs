@@ -160,7 +160,12 @@ pub struct Refinement {
     pub pareto_chosen: Option<ParetoPoint>,
 }
 
-fn validate(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Result<()> {
+/// Most horizontal sections a refinement accepts: a section every 0.1 mm of a 1 m sherd.
+/// Each section is a pass over the skins per cost evaluation, so the bound keeps a
+/// hostile option value from asking for unbounded time and memory.
+pub const MAX_SECTION_COUNT: usize = 10_000;
+
+pub(crate) fn validate(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Result<()> {
     if !axis.point.iter().chain(axis.direction.iter()).all(|c| c.is_finite()) {
         return Err(Error::InvalidArgument(format!("start axis is not finite: {:?}", axis.record())));
     }
@@ -178,6 +183,9 @@ fn validate(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Result<()> {
     }
     if options.section_count == Some(0) {
         return Err(Error::InvalidArgument("section_count must be at least 1".into()));
+    }
+    if let Some(count) = options.section_count.filter(|&c| c > MAX_SECTION_COUNT) {
+        return Err(Error::InvalidArgument(format!("section_count must be at most {MAX_SECTION_COUNT}, got {count}")));
     }
     if let Some((i, p)) = mesh.positions.iter().enumerate().find(|(_, p)| !p.iter().all(|c| c.is_finite())) {
         return Err(Error::InvalidArgument(format!("vertex {i} is not finite: {p:?}")));
