@@ -797,6 +797,40 @@ SherdStatus sherd_export_reconstruction_ply(const SherdMesh *mesh,
                                             bool binary);
 
 /**
+ * Like `sherd_export_reconstruction_ply`, into a new mesh `*out_mesh` (in the oriented
+ * frame: axis on z, base down, as `sherd_mesh_oriented_transform` moves the scan), for
+ * hosts that show the reconstruction as a layer or object of their own.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `out_mesh` writable.
+ */
+SherdStatus sherd_reconstruction_mesh(const SherdMesh *mesh,
+                                      const SherdAxis *axis,
+                                      double angle_rad,
+                                      size_t segments,
+                                      SherdMesh **out_mesh);
+
+/**
+ * Paints vessel regularity (Wilczek et al. 2018, section 2.4.4) on a copy of `mesh`:
+ * `*out_mesh` receives the same vertices and triangles, in the mesh's own frame, with
+ * each vertex's value as its quality (`sherd_mesh_copy_quality`) and its colour on the
+ * map (`sherd_mesh_copy_colors`). `regularity` is a `SHERD_REGULARITY_*` value:
+ * `AXIS_DISTANCE` gives the distance to the axis in mm (rainbow map, as the drawing's
+ * regularity style); `IDEAL_VESSEL` the signed distance in mm to the vessel revolved
+ * from the section at `angle_rad` (NaN: the most informative angle), positive outside
+ * (blue-white-red map centred on 0, as `sherd export --regularity`).
+ * `SHERD_STATUS_DEGENERATE_GEOMETRY` when that section has no closed outline.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `out_mesh` writable.
+ */
+SherdStatus sherd_regularity_mesh(const SherdMesh *mesh,
+                                  const SherdAxis *axis,
+                                  uint32_t regularity,
+                                  double angle_rad,
+                                  SherdMesh **out_mesh);
+
+/**
  * Measures `mesh` oriented by `axis` (the refined axis). `options` may be NULL for the
  * defaults (which include a bootstrap for the intervals: a few refinements more).
  * `out_measurements` (its `size` set) receives the figures; `out_json` (or NULL) all of

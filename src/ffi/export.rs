@@ -1,17 +1,19 @@
-//! Exports in the oriented frame: the oriented mesh and the 3D reconstruction as PLY, the
-//! profile section as CSV (to a file or to memory).
+//! Exports in the oriented frame: the oriented mesh and the 3D reconstruction as PLY (or
+//! as a mesh handle), the profile section as CSV (to a file or to memory), and the vessel
+//! regularity painted on a copy of the mesh.
 
 use std::ffi::c_char;
 
 use super::buffer::{SherdBuffer, hand_out_text};
 use super::error::{Failure, FfiResult};
-use super::mesh::{SherdMesh, mesh_ref, ply_encoding};
+use super::mesh::{SherdMesh, hand_out, mesh_ref, ply_encoding};
 use super::orient::{SherdAxis, read_axis};
 use super::panic::guard;
 use super::pointers::{path_from, require, write_out};
 use super::status::SherdStatus;
 use crate::mesh::Mesh;
 use crate::orient::Axis;
+use crate::profile::regularity::{ColorMap, ColorScale, distance_to_axis, distance_to_ideal_vessel, regularity_mesh};
 use crate::profile::revolve::{oriented_mesh, revolve_profile};
 use crate::profile::section::{ProfileSection, most_informative_angle, profile_section};
 
@@ -137,8 +139,76 @@ pub unsafe extern "C" fn sherd_export_reconstruction_ply(
         let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
         let axis = unsafe { read_axis(axis, "axis") }?;
         let path = unsafe { path_from(path, "path") }?;
-        let segments = if segments == 0 { DEFAULT_REVOLUTION_SEGMENTS } else { segments };
-        let reconstruction = revolve_profile(&section_at(mesh, &axis, angle_rad)?, segments)?;
-        Ok(crate::mesh::io::write_ply(&path, &reconstruction, ply_encoding(binary))?)
+        Ok(crate::mesh::io::write_ply(&path, &reconstruction(mesh, &axis, angle_rad, segments)?, ply_encoding(binary))?)
+    })
+}
+
+/// The revolved section of `sherd_export_reconstruction_ply` and `sherd_reconstruction_mesh`.
+fn reconstruction(mesh: &Mesh, axis: &Axis, angle_rad: f64, segments: usize) -> FfiResult<Mesh> {
+    let segments = if segments == 0 { DEFAULT_REVOLUTION_SEGMENTS } else { segments };
+    Ok(revolve_profile(&section_at(mesh, axis, angle_rad)?, segments)?)
+}
+
+/// Like `sherd_export_reconstruction_ply`, into a new mesh `*out_mesh` (in the oriented
+/// frame: axis on z, base down, as `sherd_mesh_oriented_transform` moves the scan), for
+/// hosts that show the reconstruction as a layer or object of their own.
+///
+/// # Safety
+/// `mesh` must be a live handle; `axis` must have its `size` set; `out_mesh` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_reconstruction_mesh(
+    mesh: *const SherdMesh,
+    axis: *const SherdAxis,
+    angle_rad: f64,
+    segments: usize,
+    out_mesh: *mut *mut SherdMesh,
+) -> SherdStatus {
+    guard("sherd_reconstruction_mesh", || {
+        let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
+        let axis = unsafe { read_axis(axis, "axis") }?;
+        require(out_mesh.cast_const(), "out_mesh")?;
+        let vessel = reconstruction(mesh, &axis, angle_rad, segments)?;
+        unsafe { hand_out(out_mesh, vessel) }
+    })
+}
+
+/// Paints vessel regularity (Wilczek et al. 2018, section 2.4.4) on a copy of `mesh`:
+/// `*out_mesh` receives the same vertices and triangles, in the mesh's own frame, with
+/// each vertex's value as its quality (`sherd_mesh_copy_quality`) and its colour on the
+/// map (`sherd_mesh_copy_colors`). `regularity` is a `SHERD_REGULARITY_*` value:
+/// `AXIS_DISTANCE` gives the distance to the axis in mm (rainbow map, as the drawing's
+/// regularity style); `IDEAL_VESSEL` the signed distance in mm to the vessel revolved
+/// from the section at `angle_rad` (NaN: the most informative angle), positive outside
+/// (blue-white-red map centred on 0, as `sherd export --regularity`).
+/// `SHERD_STATUS_DEGENERATE_GEOMETRY` when that section has no closed outline.
+///
+/// # Safety
+/// `mesh` must be a live handle; `axis` must have its `size` set; `out_mesh` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_regularity_mesh(
+    mesh: *const SherdMesh,
+    axis: *const SherdAxis,
+    regularity: u32,
+    angle_rad: f64,
+    out_mesh: *mut *mut SherdMesh,
+) -> SherdStatus {
+    guard("sherd_regularity_mesh", || {
+        let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
+        let axis = unsafe { read_axis(axis, "axis") }?;
+        require(out_mesh.cast_const(), "out_mesh")?;
+        let (values, map) = match regularity {
+            0 => {
+                let values = distance_to_axis(mesh, &axis);
+                let map = ColorMap::fitted(&values, ColorScale::Rainbow, "distance to axis", "mm");
+                (values, map)
+            }
+            1 => {
+                let values = distance_to_ideal_vessel(mesh, &axis, &section_at(mesh, &axis, angle_rad)?)?;
+                let map = ColorMap::fitted(&values, ColorScale::Diverging, "distance to the ideal vessel", "mm");
+                (values, map)
+            }
+            other => return Err(Failure::invalid(format!("`regularity` {other} is not a SHERD_REGULARITY_* value (0 or 1)"))),
+        };
+        unsafe { hand_out(out_mesh, regularity_mesh(mesh, &values, &map)?) }
     })
 }
