@@ -100,6 +100,14 @@ LayerMesh layerMesh(MeshModel& model)
 	return LayerMesh{std::move(mesh), std::move(vertices)};
 }
 
+// A fragment sherd cannot orient: the filter fails with the library's reason and what to do.
+MLException cannotOrient(const QString& reason)
+{
+	return MLException("Sherd: this fragment does not determine its axis (" + reason +
+	                   "). Orient it with Sherd: orient from three points picked on the rim or base, "
+	                   "then use the layer's z axis.");
+}
+
 // The axis of the analysis filters, in the frame the layer is displayed in.
 SherdAxis layerAxis(const LayerMesh& layer, int source)
 {
@@ -109,10 +117,7 @@ SherdAxis layerAxis(const LayerMesh& layer, int source)
 	SherdAxis axis = sherd::make_axis({0, 0, 0}, {0, 0, 1});
 	SherdStatus status = sherd_analyse(layer.mesh.get(), nullptr, 1.0, &axis, nullptr);
 	if (status == SHERD_STATUS_NEEDS_MANUAL_ORIENTATION)
-		throw MLException(QString("Sherd: this fragment does not determine its axis (") +
-		                  sherd_last_error_message() +
-		                  "). Orient it with Sherd: orient from three points on the rim or base, "
-		                  "then choose the layer's z axis.");
+		throw cannotOrient(QString::fromUtf8(sherd_last_error_message()));
 	sherd::check(status);
 	return axis;
 }
@@ -142,6 +147,14 @@ void applyOrientation(MeshModel& model, const Matrix44m& oriented, int applyTo, 
 	else {
 		postConditionMask = MeshModel::MM_TRANSFMATRIX;
 	}
+}
+
+int applyToParameter(const RichParameterList& parameters)
+{
+	int applyTo = parameters.getEnum("apply_to");
+	if (applyTo != APPLY_TO_TRANSFORM && applyTo != APPLY_TO_VERTICES)
+		throw MLException(QString("Sherd: apply_to %1 is not one of 0 (layer transform), 1 (vertices).").arg(applyTo));
+	return applyTo;
 }
 
 QString matrixText(const Matrix44m& m)
@@ -182,6 +195,7 @@ std::array<double, 9> pickedPoints(const RichParameterList& parameters, const Ma
 std::map<std::string, QVariant> orient(MeshModel& model, const RichParameterList& parameters,
                                        unsigned int& postConditionMask, const FilterPlugin& logger)
 {
+	int applyTo = applyToParameter(parameters);
 	LayerMesh layer = layerMesh(model);
 	int method = parameters.getEnum("method");
 	bool refine = parameters.getBool("refine");
@@ -196,8 +210,7 @@ std::map<std::string, QVariant> orient(MeshModel& model, const RichParameterList
 			? sherd::orient_automatic(layer.mesh)
 			: sherd::orient_from_three_points(layer.mesh, pickedPoints(parameters, model.cm.Tr));
 		if (!found.oriented)
-			throw MLException(QString("Sherd: this fragment does not determine its axis (") +
-			                  QString::fromStdString(found.reason) + ").");
+			throw cannotOrient(QString::fromStdString(found.reason));
 		axis = found.axis;
 		how = method == ORIENT_AUTOMATIC ? "automatic orientation" : "three points";
 		if (refine) {
@@ -208,9 +221,6 @@ std::map<std::string, QVariant> orient(MeshModel& model, const RichParameterList
 	else {
 		throw MLException(QString("Sherd: method %1 is not one of 0 (automatic), 1 (three points).").arg(method));
 	}
-	int applyTo = parameters.getEnum("apply_to");
-	if (applyTo != APPLY_TO_TRANSFORM && applyTo != APPLY_TO_VERTICES)
-		throw MLException(QString("Sherd: apply_to %1 is not one of 0 (layer transform), 1 (vertices).").arg(applyTo));
 	Matrix44m oriented = toMatrix(layer.mesh.oriented_transform(axis));
 	applyOrientation(model, oriented, applyTo, postConditionMask);
 	logger.log("Sherd: orient (%s): axis %s", qUtf8Printable(how), qUtf8Printable(axisText(axis)));
@@ -221,20 +231,7 @@ std::map<std::string, QVariant> orient(MeshModel& model, const RichParameterList
 std::map<std::string, QVariant> refine(MeshModel& model, const RichParameterList& parameters,
                                        unsigned int& postConditionMask, const FilterPlugin& logger)
 {
-	LayerMesh layer = layerMesh(model);
-	SherdAxis start = sherd::make_axis({0, 0, 0}, {0, 0, 1});
-	if (parameters.getEnum("start_axis") == AXIS_AUTOMATIC) {
-		sherd::Orientation found = sherd::orient_automatic(layer.mesh);
-		if (!found.oriented)
-			throw MLException(QString("Sherd: this fragment does not determine its axis (") +
-			                  QString::fromStdString(found.reason) +
-			                  "). Orient it from three points first and start from the layer's z axis.");
-		start = found.axis;
-	}
-	else if (parameters.getEnum("start_axis") != AXIS_LAYER_FRAME) {
-		throw MLException(QString("Sherd: start_axis %1 is not one of 0 (automatic), 1 (layer frame).")
-		                      .arg(parameters.getEnum("start_axis")));
-	}
+	// Parameters are checked before any computation, so a mistake costs nothing.
 	sherd::RefineOptions options(sherd_refine_options_new);
 	sherd::check(sherd_refine_options_set_criterion(options.get(), std::uint32_t(parameters.getEnum("criterion"))));
 	sherd::check(sherd_refine_options_set_surface(options.get(), std::uint32_t(parameters.getEnum("surface"))));
@@ -242,6 +239,19 @@ std::map<std::string, QVariant> refine(MeshModel& model, const RichParameterList
 	if (sections < 0) throw MLException(QString("Sherd: section_count %1 is negative (0 lets sherd choose).").arg(sections));
 	sherd::check(sherd_refine_options_set_section_count(options.get(), std::size_t(sections)));
 	sherd::check(sherd_refine_options_set_search_bound_deg(options.get(), double(parameters.getFloat("search_bound_deg"))));
+	int applyTo = applyToParameter(parameters);
+	LayerMesh layer = layerMesh(model);
+	SherdAxis start = sherd::make_axis({0, 0, 0}, {0, 0, 1});
+	if (parameters.getEnum("start_axis") == AXIS_AUTOMATIC) {
+		sherd::Orientation found = sherd::orient_automatic(layer.mesh);
+		if (!found.oriented)
+			throw cannotOrient(QString::fromStdString(found.reason));
+		start = found.axis;
+	}
+	else if (parameters.getEnum("start_axis") != AXIS_LAYER_FRAME) {
+		throw MLException(QString("Sherd: start_axis %1 is not one of 0 (automatic), 1 (layer frame).")
+		                      .arg(parameters.getEnum("start_axis")));
+	}
 	SherdRefinement* handle = nullptr;
 	sherd::check(sherd_refine(layer.mesh.get(), &start, options.get(), &handle));
 	SherdAxis axis = sherd::make_axis({0, 0, 0}, {0, 0, 1});
@@ -251,9 +261,6 @@ std::map<std::string, QVariant> refine(MeshModel& model, const RichParameterList
 	SherdStatus reportStatus = axisStatus == SHERD_STATUS_OK ? sherd_refinement_report(handle, &report) : axisStatus;
 	sherd_refinement_free(handle);
 	sherd::check(reportStatus);
-	int applyTo = parameters.getEnum("apply_to");
-	if (applyTo != APPLY_TO_TRANSFORM && applyTo != APPLY_TO_VERTICES)
-		throw MLException(QString("Sherd: apply_to %1 is not one of 0 (layer transform), 1 (vertices).").arg(applyTo));
 	Matrix44m oriented = toMatrix(layer.mesh.oriented_transform(axis));
 	applyOrientation(model, oriented, applyTo, postConditionMask);
 	logger.log("Sherd: refine (%s on %s, %zu sections): tilt %.3f deg, shift %.3f mm, residual %.4f -> %.4f mm",
@@ -278,13 +285,13 @@ QString interval(const double bounds[2], const char* unit)
 std::map<std::string, QVariant> measure(MeshModel& model, const RichParameterList& parameters,
                                         const FilterPlugin& logger)
 {
-	LayerMesh layer = layerMesh(model);
-	SherdAxis axis = layerAxis(layer, parameters.getEnum("axis"));
 	int samples = parameters.getInt("bootstrap_samples");
 	if (samples < 0) throw MLException(QString("Sherd: bootstrap_samples %1 is negative.").arg(samples));
 	sherd::MeasureOptions options(sherd_measure_options_new);
 	sherd::check(sherd_measure_options_set_bootstrap_samples(options.get(), std::size_t(samples)));
 	sherd::check(sherd_measure_options_set_confidence(options.get(), double(parameters.getFloat("confidence"))));
+	LayerMesh layer = layerMesh(model);
+	SherdAxis axis = layerAxis(layer, parameters.getEnum("axis"));
 	SherdMeasurements m{};
 	m.size = sizeof m;
 	sherd::check(sherd_measure(layer.mesh.get(), &axis, options.get(), &m, nullptr));
@@ -353,10 +360,10 @@ std::map<std::string, QVariant> draw(MeshModel& model, const RichParameterList& 
 std::map<std::string, QVariant> reconstruct(MeshDocument& document, MeshModel& model,
                                             const RichParameterList& parameters, const FilterPlugin& logger)
 {
-	LayerMesh layer = layerMesh(model);
-	SherdAxis axis = layerAxis(layer, parameters.getEnum("axis"));
 	int segments = parameters.getInt("segments");
 	if (segments < 3) throw MLException(QString("Sherd: %1 segments cannot make a turn (at least 3).").arg(segments));
+	LayerMesh layer = layerMesh(model);
+	SherdAxis axis = layerAxis(layer, parameters.getEnum("axis"));
 	SherdMesh* handle = nullptr;
 	sherd::check(sherd_reconstruction_mesh(layer.mesh.get(), &axis, sectionAngleRad(parameters), std::size_t(segments), &handle));
 	sherd::Mesh vessel(handle);
@@ -387,9 +394,11 @@ std::map<std::string, QVariant> reconstruct(MeshDocument& document, MeshModel& m
 std::map<std::string, QVariant> regularity(MeshModel& model, const RichParameterList& parameters,
                                            unsigned int& postConditionMask, const FilterPlugin& logger)
 {
+	int map = parameters.getEnum("map");
+	if (map != SHERD_REGULARITY_AXIS_DISTANCE && map != SHERD_REGULARITY_IDEAL_VESSEL)
+		throw MLException(QString("Sherd: map %1 is not one of 0 (distance to the axis), 1 (ideal vessel).").arg(map));
 	LayerMesh layer = layerMesh(model);
 	SherdAxis axis = layerAxis(layer, parameters.getEnum("axis"));
-	int map = parameters.getEnum("map");
 	SherdMesh* handle = nullptr;
 	sherd::check(sherd_regularity_mesh(layer.mesh.get(), &axis, std::uint32_t(map), sectionAngleRad(parameters), &handle));
 	sherd::Mesh painted(handle);

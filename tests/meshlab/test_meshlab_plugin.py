@@ -3,6 +3,7 @@ the plugin built by tests/meshlab/run.sh (``SHERD_MESHLAB_PLUGIN``) and applies 
 filter headless. Every result is compared with what the C ABI gives for the same scan,
 through the CLI (``sherd orient --json``) or the Python binding (bindings/python)."""
 
+import ctypes
 import json
 import os
 import subprocess
@@ -44,16 +45,20 @@ def cli_record(scan):
 @pytest.fixture(scope="session")
 def rim_sherd(tmp_path_factory):
     folder = tmp_path_factory.mktemp("synth")
-    subprocess.run([str(SHERD_CLI), "synth", "-o", str(folder), "--seed", "3", "--part", "rim", "--faces", "12000"],
-                   check=True, capture_output=True)
+    # Seed 3 is a rim sherd of 20000 faces that sherd orients (checked below).
+    subprocess.run([str(SHERD_CLI), "synth", "-o", str(folder), "--seed", "3"], check=True, capture_output=True)
     (scan,) = folder.glob("*.ply")
     record, error = cli_record(scan)
-    assert error is None, error
+    assert error is None and record["status"] == "ok", (error, record)
     return scan, record
 
 
 def load(scan):
-    ms = pymeshlab.MeshSet()
+    # Verbose: pymeshlab 2022.2 leaves its output redirection in place when a filter
+    # fails in quiet mode, and after a failure that ran sherd's thread pool for the first
+    # time the next load_new_mesh in the process raised std::bad_alloc (reported, not
+    # fixed here: pymeshlab's side). Verbose mode has no redirection.
+    ms = pymeshlab.MeshSet(verbose=True)
     ms.load_new_mesh(str(scan))
     return ms
 
@@ -61,6 +66,14 @@ def load(scan):
 def cli_transform(scan, record):
     axis = sherd.Axis(record["axis"]["point"], record["axis"]["direction"])
     return sherd.Mesh.read(str(scan)).oriented_transform(axis)
+
+
+def meshlab_log(capfd):
+    """What MeshLab logged since the last call: pymeshlab, with verbosity on, prints the
+    log lines on the C streams (stderr), flushed first."""
+    ctypes.CDLL(None).fflush(None)
+    captured = capfd.readouterr()
+    return captured.out + captured.err
 
 
 def homogeneous(points, matrix):
@@ -118,9 +131,9 @@ def test_measure_writes_the_figures_to_the_log(rim_sherd, capfd):
     scan, record = rim_sherd
     ms = load(scan)
     ms.set_verbosity(True)
-    capfd.readouterr()
+    meshlab_log(capfd)
     figures = ms.apply_filter("sherd_measure", bootstrap_samples=0)
-    log = capfd.readouterr().out
+    log = meshlab_log(capfd)
     assert figures["rim_diameter_mm"] == pytest.approx(record["rim_diameter_mm"], abs=1e-6)
     assert figures["sector_angle_deg"] == pytest.approx(record["sector_angle_deg"], abs=1e-6)
     assert figures["height_mm"] == pytest.approx(record["height_mm"], abs=1e-6)
@@ -257,9 +270,9 @@ def test_real_scan(real_scan, capfd):
     expected = sherd.Mesh.read(str(real_scan)).oriented_transform(found.axis)
     np.testing.assert_allclose(ms.current_mesh().trasform_matrix(), expected, atol=1e-9)
     ms.set_verbosity(True)
-    capfd.readouterr()
+    meshlab_log(capfd)
     ms.apply_filter("sherd_measure", axis=1, bootstrap_samples=0)
-    assert "Sherd: rim diameter" in capfd.readouterr().out
+    assert "Sherd: rim diameter" in meshlab_log(capfd)
     ms.apply_filter("sherd_reconstruct", axis=1)
     topology = ms.get_topological_measures()
     assert topology["boundary_edges"] == 0 and topology["is_mesh_two_manifold"]
