@@ -80,15 +80,18 @@ LayerMesh layerMesh(MeshModel& model)
 	}
 	sherd::Mesh mesh = sherd::Mesh::from_arrays(positions, triangles);
 	// A mesh's normals are recomputed by sherd from its faces; a point cloud has only
-	// the scanner's.
+	// the scanner's. MeshLab gives every vertex a normal slot, all zero when the file
+	// had none: then sherd is told there are none.
 	if (triangles.empty() && model.hasDataMask(MeshModel::MM_VERTNORMAL)) {
 		std::vector<double> normals;
 		normals.reserve(positions.size());
+		bool any = false;
 		for (CVertexO* v : vertices) {
 			vcg::Point3d n = transformPoint(cm.Tr, v->cN()) - transformPoint(cm.Tr, Point3m(0, 0, 0));
+			any = any || n.SquaredNorm() > 0;
 			normals.insert(normals.end(), {n[0], n[1], n[2]});
 		}
-		mesh.set_normals(normals);
+		if (any) mesh.set_normals(normals);
 	}
 	if (model.hasDataMask(MeshModel::MM_VERTCOLOR)) {
 		std::vector<std::uint8_t> rgba;
