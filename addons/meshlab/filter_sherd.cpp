@@ -593,10 +593,13 @@ RichParameterList FilterSherdPlugin::initParameterList(const QAction* action, co
 		list.addParam(RichFloat("confidence", 0.95, "Confidence", "Confidence level of the intervals, in (0, 1)."));
 		break;
 	case FP_SHERD_DRAW: {
-		QString name = QFileInfo(mesh.fullName()).completeBaseName();
-		if (name.isEmpty()) name = "sherd";
+		// By default the drawing goes beside the scan it shows.
+		QFileInfo scan(mesh.fullName());
+		QString file = scan.completeBaseName().isEmpty()
+			? QString("sherd_drawing.svg")
+			: scan.absolutePath() + "/" + scan.completeBaseName() + "_drawing.svg";
 		addAxisParameter(list);
-		list.addParam(RichSaveFile("file", name + "_drawing.svg", "*.svg", "File",
+		list.addParam(RichSaveFile("file", file, "*.svg", "File",
 		                           "Where to write the drawing; its extension must match the format."));
 		list.addParam(RichEnum("format", 0, formats, "Format",
 		                       "SVG (layers editable in Inkscape or Illustrator), EPS, PDF or PNG."));
