@@ -20,7 +20,7 @@ mkdir -p "$cache"
 if [ "$(id -u)" = 0 ]; then SUDO=""; else SUDO="sudo"; fi
 say() { printf -- '--- meshlab: %s\n' "$*"; }
 
-packages=(qtbase5-dev libglew-dev libeigen3-dev cmake g++ xz-utils python3-venv)
+packages=(qtbase5-dev libqt5opengl5-dev libglew-dev libeigen3-dev cmake g++ xz-utils python3-venv dpkg-dev)
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then
