@@ -9,7 +9,7 @@
 # CMake (apt), a deb-src entry for Debian trixie, MeshLab's source archive from it
 # (apt-get source), and a virtual environment with pymeshlab 2022.2.post4. Downloads and
 # the venv are cached in $SHERD_MESHLAB_CACHE (default ~/.cache/sherd-meshlab); nothing of
-# MeshLab enters the repository. The plugin is built in $SHERD_MESHLAB_CACHE/build.
+# MeshLab enters the repository. The plugin is built in target/meshlab.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 cache=${SHERD_MESHLAB_CACHE:-$HOME/.cache/sherd-meshlab}
@@ -69,7 +69,7 @@ if grep -aq "${meshlab_release}d" "$common"; then scalar=double; version="${mesh
 
 say "building sherd and the plugin (MeshLab $version, $scalar)"
 (cd "$root" && cargo build --release --quiet --lib --bin sherd)
-build="$cache/build"
+build="$root/target/meshlab"
 cmake -S "$root/addons/meshlab" -B "$build" -DCMAKE_BUILD_TYPE=Release \
   -DMESHLAB_SOURCE_DIR="$source_dir" -DMESHLAB_VERSION="$version" -DMESHLAB_SCALAR="$scalar" \
   -DMESHLAB_COMMON_LIBRARY="$common" -DSHERD_STATIC_LIBRARY="$root/target/release/libsherd.a" >/dev/null
