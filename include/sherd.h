@@ -797,40 +797,6 @@ SherdStatus sherd_export_reconstruction_ply(const SherdMesh *mesh,
                                             bool binary);
 
 /**
- * Like `sherd_export_reconstruction_ply`, into a new mesh `*out_mesh` (in the oriented
- * frame: axis on z, base down, as `sherd_mesh_oriented_transform` moves the scan), for
- * hosts that show the reconstruction as a layer or object of their own.
- *
- * # Safety
- * `mesh` must be a live handle; `axis` must have its `size` set; `out_mesh` writable.
- */
-SherdStatus sherd_reconstruction_mesh(const SherdMesh *mesh,
-                                      const SherdAxis *axis,
-                                      double angle_rad,
-                                      size_t segments,
-                                      SherdMesh **out_mesh);
-
-/**
- * Paints vessel regularity (Wilczek et al. 2018, section 2.4.4) on a copy of `mesh`:
- * `*out_mesh` receives the same vertices and triangles, in the mesh's own frame, with
- * each vertex's value as its quality (`sherd_mesh_copy_quality`) and its colour on the
- * map (`sherd_mesh_copy_colors`). `regularity` is a `SHERD_REGULARITY_*` value:
- * `AXIS_DISTANCE` gives the distance to the axis in mm (rainbow map, as the drawing's
- * regularity style); `IDEAL_VESSEL` the signed distance in mm to the vessel revolved
- * from the section at `angle_rad` (NaN: the most informative angle), positive outside
- * (blue-white-red map centred on 0, as `sherd export --regularity`).
- * `SHERD_STATUS_DEGENERATE_GEOMETRY` when that section has no closed outline.
- *
- * # Safety
- * `mesh` must be a live handle; `axis` must have its `size` set; `out_mesh` writable.
- */
-SherdStatus sherd_regularity_mesh(const SherdMesh *mesh,
-                                  const SherdAxis *axis,
-                                  uint32_t regularity,
-                                  double angle_rad,
-                                  SherdMesh **out_mesh);
-
-/**
  * Measures `mesh` oriented by `axis` (the refined axis). `options` may be NULL for the
  * defaults (which include a bootstrap for the intervals: a few refinements more).
  * `out_measurements` (its `size` set) receives the figures; `out_json` (or NULL) all of
@@ -1210,7 +1176,8 @@ void sherd_orient_options_free(SherdOrientOptions *options);
 SherdStatus sherd_orient_options_set_target_vertex_count(SherdOrientOptions *options, size_t count);
 
 /**
- * Laplacian smoothing iterations of the working copy (default 5; 0 disables).
+ * Laplacian smoothing iterations of the working copy (default 5; 0 disables; at most
+ * 1000).
  *
  * # Safety
  * `options` must be a live handle.
@@ -1297,7 +1264,8 @@ SherdStatus sherd_refine_options_set_criterion(SherdRefineOptions *options, uint
 SherdStatus sherd_refine_options_set_surface(SherdRefineOptions *options, uint32_t surface);
 
 /**
- * Number of horizontal sections; 0 lets the library choose from the sherd's height.
+ * Number of horizontal sections (at most 10000); 0 lets the library choose from the
+ * sherd's height.
  *
  * # Safety
  * `options` must be a live handle.
@@ -1343,8 +1311,8 @@ SherdStatus sherd_measure_options_set_refine_options(SherdMeasureOptions *option
                                                      const SherdRefineOptions *refine_options);
 
 /**
- * Number of bootstrap resamples behind the intervals; 0 gives no intervals (NaN), and
- * so do fewer than 5 usable resamples.
+ * Number of bootstrap resamples behind the intervals (at most 10000); 0 gives no
+ * intervals (NaN), and so do fewer than 5 usable resamples.
  *
  * # Safety
  * `options` must be a live handle.
@@ -1470,8 +1438,9 @@ SherdStatus sherd_draw_options_set_title(SherdDrawOptions *options, const char *
  * `millimetres_per_unit` is 1 for scans in millimetres.
  *
  * Returns `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` (record written, no axis) when the
- * sherd does not determine its axis, and `SHERD_STATUS_INVALID_ARGUMENT` with the
- * record's error when the scan cannot be read or processed.
+ * sherd does not determine its axis. When the scan cannot be read or processed the
+ * record (status `"error"`) is still written, no axis, and the status says why:
+ * `SHERD_STATUS_IO`, `SHERD_STATUS_PARSE`, `SHERD_STATUS_NOT_CONVERGED`...
  *
  * # Safety
  * `path` must be a NUL-terminated string; `refine_options` NULL or live; the
@@ -1495,6 +1464,58 @@ SherdStatus sherd_analyse(const SherdMesh *mesh,
                           double millimetres_per_unit,
                           SherdAxis *out_axis,
                           SherdBuffer **out_record_json);
+
+/**
+ * Creates the 3D reconstruction of the preserved part of the vessel as a new mesh: the
+ * closed outlines of the profile section at `angle_rad` (NaN: the most informative angle)
+ * revolved a full turn with `segments` steps (0: 180, 2 degrees each; at least 3
+ * otherwise). It is watertight, with outward-facing triangles, in the oriented frame
+ * (axis on z, rim up): place it with the scan by applying the inverse of
+ * `sherd_mesh_oriented_transform`. Read it with `sherd_mesh_vertex_count`,
+ * `sherd_mesh_copy_positions` and `sherd_mesh_copy_triangles`; free it with
+ * `sherd_mesh_free`. `SHERD_STATUS_DEGENERATE_GEOMETRY` when the section has no closed
+ * outline; `*out_mesh` is left unchanged on error.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `out_mesh` writable.
+ */
+SherdStatus sherd_reconstruct(const SherdMesh *mesh,
+                              const SherdAxis *axis,
+                              double angle_rad,
+                              size_t segments,
+                              SherdMesh **out_mesh);
+
+/**
+ * Computes a regularity map of `mesh` (the paper's section 2.4.4), one value per vertex
+ * in the mesh's order, as `sherd export --regularity` writes it:
+ *
+ * - `SHERD_REGULARITY_AXIS_DISTANCE`: each vertex's distance to the axis, mm, on a
+ *   rainbow scale (blue near, red far) spanning the 2nd to 98th percentile;
+ * - `SHERD_REGULARITY_IDEAL_VESSEL`: the signed distance, mm, to the vessel revolved from
+ *   the section at `angle_rad` (NaN: the most informative angle), positive where the
+ *   surface stands out of the ideal wall, on a diverging scale symmetric about 0 (blue
+ *   inside, white on it, red outside).
+ *
+ * Writes, for each of these out-pointers that is not NULL (at least one must be given):
+ * `out_values`, `vertex_capacity` floats; `out_rgba`, `4 * vertex_capacity` bytes of
+ * the values' colours (alpha 255); `out_value_range`, 2 doubles: the values at the low
+ * and high ends of the colour scale (for a legend). `vertex_capacity` must be at least
+ * the vertex count (`SHERD_STATUS_BUFFER_TOO_SMALL` otherwise, nothing written).
+ * `SHERD_STATUS_DEGENERATE_GEOMETRY` when the section for the ideal vessel has no
+ * closed outline.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; each out-pointer NULL
+ * or with room for the stated number of values.
+ */
+SherdStatus sherd_regularity(const SherdMesh *mesh,
+                             const SherdAxis *axis,
+                             uint32_t regularity,
+                             double angle_rad,
+                             float *out_values,
+                             uint8_t *out_rgba,
+                             size_t vertex_capacity,
+                             double *out_value_range);
 
 /**
  * Refines `axis` (from `sherd_orient_*`) on `mesh` with the criterion and surface of

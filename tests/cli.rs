@@ -229,7 +229,7 @@ fn batch_reports_every_sherd_keeps_going_past_a_broken_file_and_resumes() {
 
 #[test]
 fn help_teaches_by_example() {
-    for command in ["orient", "draw", "export", "batch", "demo"] {
+    for command in ["info", "synth", "orient", "draw", "export", "batch", "demo"] {
         let output = sherd().arg(command).arg("--help").output().unwrap();
         assert!(output.status.success());
         let text = String::from_utf8_lossy(&output.stdout);

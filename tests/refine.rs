@@ -216,3 +216,23 @@ fn bad_options_are_reported() {
     let tiny = Mesh::new(vec![Point::origin(); 3], vec![]);
     assert!(refine(&tiny, &start, &RefineOptions::default()).is_err());
 }
+
+/// The refine bench's sherd (synthetic rim seed 7, 20k faces): a rounded lip at this
+/// resolution turns by a degree or two per face, and the inner and outer skins once
+/// joined through it into one smooth region with no skin at all, so that the circles,
+/// profile and Pareto criteria refused the sherd.
+#[test]
+fn skins_stay_apart_across_a_finely_meshed_rounded_lip() {
+    use sherd::refine::sections::{PreparedSurface, Skin};
+    use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
+    let sherd = synthetic_sherd(7, &SherdOptions { target_faces: 20_000, ..SherdOptions::for_part(SherdPart::Rim) });
+    let surface = PreparedSurface::new(&sherd.mesh, &sherd.truth.axis, Surface::Both, None).unwrap();
+    for skin in [Skin::Inner, Skin::Outer] {
+        let count = surface.skins.iter().filter(|s| **s == Some(skin)).count();
+        assert!(count > sherd.mesh.vertex_count() / 4, "{skin:?} skin: {count} of {} vertices", sherd.mesh.vertex_count());
+    }
+    for criterion in [Criterion::Circles, Criterion::Profile, Criterion::Pareto] {
+        let refined = refine(&sherd.mesh, &sherd.truth.axis, &RefineOptions { criterion, ..Default::default() });
+        assert!(refined.is_ok(), "{criterion:?}: {:?}", refined.err());
+    }
+}

@@ -367,9 +367,7 @@ std::map<std::string, QVariant> reconstruct(MeshDocument& document, MeshModel& m
 	if (segments < 3) throw MLException(QString("Sherd: %1 segments cannot make a turn (at least 3).").arg(segments));
 	LayerMesh layer = layerMesh(model);
 	SherdAxis axis = layerAxis(layer, parameters.getEnum("axis"));
-	SherdMesh* handle = nullptr;
-	sherd::check(sherd_reconstruction_mesh(layer.mesh.get(), &axis, sectionAngleRad(parameters), std::size_t(segments), &handle));
-	sherd::Mesh vessel(handle);
+	sherd::Mesh vessel = sherd::reconstruct(layer.mesh, axis, sectionAngleRad(parameters), std::size_t(segments));
 	std::vector<double> positions = vessel.positions();
 	std::vector<std::uint32_t> triangles = vessel.triangles();
 	// The reconstruction comes in the oriented frame; it is placed where the fragment is
@@ -402,24 +400,22 @@ std::map<std::string, QVariant> regularity(MeshModel& model, const RichParameter
 		throw MLException(QString("Sherd: map %1 is not one of 0 (distance to the axis), 1 (ideal vessel).").arg(map));
 	LayerMesh layer = layerMesh(model);
 	SherdAxis axis = layerAxis(layer, parameters.getEnum("axis"));
-	SherdMesh* handle = nullptr;
-	sherd::check(sherd_regularity_mesh(layer.mesh.get(), &axis, std::uint32_t(map), sectionAngleRad(parameters), &handle));
-	sherd::Mesh painted(handle);
-	std::vector<float> quality = painted.quality().value();
-	std::vector<std::uint8_t> colors = painted.colors().value();
+	sherd::Regularity painted = sherd::regularity(layer.mesh, axis, std::uint32_t(map), sectionAngleRad(parameters));
 	model.updateDataMask(MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTCOLOR);
 	float low = std::numeric_limits<float>::infinity(), high = -low;
 	for (std::size_t i = 0; i < layer.vertices.size(); ++i) {
-		layer.vertices[i]->Q() = Scalarm(quality[i]);
-		layer.vertices[i]->C() = vcg::Color4b(colors[4 * i], colors[4 * i + 1], colors[4 * i + 2], colors[4 * i + 3]);
-		if (std::isfinite(quality[i])) {
-			low = std::min(low, quality[i]);
-			high = std::max(high, quality[i]);
+		const std::uint8_t* rgba = &painted.rgba[4 * i];
+		layer.vertices[i]->Q() = Scalarm(painted.values[i]);
+		layer.vertices[i]->C() = vcg::Color4b(rgba[0], rgba[1], rgba[2], rgba[3]);
+		if (std::isfinite(painted.values[i])) {
+			low = std::min(low, painted.values[i]);
+			high = std::max(high, painted.values[i]);
 		}
 	}
 	postConditionMask = MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTCOLOR;
-	logger.log("Sherd: regularity of '%s' (%s) as vertex quality and colour: %.3f to %.3f mm",
-	           qUtf8Printable(model.label()), qUtf8Printable(regularityMaps.value(map)), low, high);
+	logger.log("Sherd: regularity of '%s' (%s) as vertex quality and colour: %.3f to %.3f mm (colour scale %.3f to %.3f mm)",
+	           qUtf8Printable(model.label()), qUtf8Printable(regularityMaps.value(map)), low, high,
+	           painted.value_range[0], painted.value_range[1]);
 	return {{"min_mm", double(low)}, {"max_mm", double(high)}};
 }
 

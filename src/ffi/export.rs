@@ -1,24 +1,23 @@
-//! Exports in the oriented frame: the oriented mesh and the 3D reconstruction as PLY (or
-//! as a mesh handle), the profile section as CSV (to a file or to memory), and the vessel
-//! regularity painted on a copy of the mesh.
+//! Exports in the oriented frame: the oriented mesh and the 3D reconstruction as PLY, the
+//! profile section as CSV (to a file or to memory).
 
 use std::ffi::c_char;
 
 use super::buffer::{SherdBuffer, hand_out_text};
 use super::error::{Failure, FfiResult};
-use super::mesh::{SherdMesh, hand_out, mesh_ref, ply_encoding};
+use super::mesh::{SherdMesh, mesh_ref, ply_encoding};
 use super::orient::{SherdAxis, read_axis};
 use super::panic::guard;
 use super::pointers::{path_from, require, write_out};
 use super::status::SherdStatus;
 use crate::mesh::Mesh;
 use crate::orient::Axis;
-use crate::profile::regularity::{ColorMap, ColorScale, distance_to_axis, distance_to_ideal_vessel, regularity_mesh};
-use crate::profile::revolve::{oriented_mesh, revolve_profile};
+use super::reconstruct::reconstruction;
+use crate::profile::revolve::oriented_mesh;
 use crate::profile::section::{ProfileSection, most_informative_angle, profile_section};
 
 /// The section at `angle_rad`, or at the most informative angle when it is NaN.
-fn section_at(mesh: &Mesh, axis: &Axis, angle_rad: f64) -> FfiResult<ProfileSection> {
+pub(crate) fn section_at(mesh: &Mesh, axis: &Axis, angle_rad: f64) -> FfiResult<ProfileSection> {
     let angle = if angle_rad.is_nan() { most_informative_angle(mesh, axis) } else { angle_rad };
     crate::profile::section::check_angle(angle)?;
     let section = profile_section(mesh, axis, angle);
@@ -115,7 +114,7 @@ pub unsafe extern "C" fn sherd_profile_csv(
 }
 
 /// Steps per turn of a reconstruction when the caller passes 0: 2 degrees each.
-const DEFAULT_REVOLUTION_SEGMENTS: usize = 180;
+pub(crate) const DEFAULT_REVOLUTION_SEGMENTS: usize = 180;
 
 /// Writes the 3D reconstruction of the preserved part of the vessel as PLY: the closed
 /// outlines of the profile section at `angle_rad` (NaN: the most informative angle)
@@ -139,76 +138,7 @@ pub unsafe extern "C" fn sherd_export_reconstruction_ply(
         let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
         let axis = unsafe { read_axis(axis, "axis") }?;
         let path = unsafe { path_from(path, "path") }?;
-        Ok(crate::mesh::io::write_ply(&path, &reconstruction(mesh, &axis, angle_rad, segments)?, ply_encoding(binary))?)
-    })
-}
-
-/// The revolved section of `sherd_export_reconstruction_ply` and `sherd_reconstruction_mesh`.
-fn reconstruction(mesh: &Mesh, axis: &Axis, angle_rad: f64, segments: usize) -> FfiResult<Mesh> {
-    let segments = if segments == 0 { DEFAULT_REVOLUTION_SEGMENTS } else { segments };
-    Ok(revolve_profile(&section_at(mesh, axis, angle_rad)?, segments)?)
-}
-
-/// Like `sherd_export_reconstruction_ply`, into a new mesh `*out_mesh` (in the oriented
-/// frame: axis on z, base down, as `sherd_mesh_oriented_transform` moves the scan), for
-/// hosts that show the reconstruction as a layer or object of their own.
-///
-/// # Safety
-/// `mesh` must be a live handle; `axis` must have its `size` set; `out_mesh` writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn sherd_reconstruction_mesh(
-    mesh: *const SherdMesh,
-    axis: *const SherdAxis,
-    angle_rad: f64,
-    segments: usize,
-    out_mesh: *mut *mut SherdMesh,
-) -> SherdStatus {
-    guard("sherd_reconstruction_mesh", || {
-        let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
-        let axis = unsafe { read_axis(axis, "axis") }?;
-        require(out_mesh.cast_const(), "out_mesh")?;
         let vessel = reconstruction(mesh, &axis, angle_rad, segments)?;
-        unsafe { hand_out(out_mesh, vessel) }
-    })
-}
-
-/// Paints vessel regularity (Wilczek et al. 2018, section 2.4.4) on a copy of `mesh`:
-/// `*out_mesh` receives the same vertices and triangles, in the mesh's own frame, with
-/// each vertex's value as its quality (`sherd_mesh_copy_quality`) and its colour on the
-/// map (`sherd_mesh_copy_colors`). `regularity` is a `SHERD_REGULARITY_*` value:
-/// `AXIS_DISTANCE` gives the distance to the axis in mm (rainbow map, as the drawing's
-/// regularity style); `IDEAL_VESSEL` the signed distance in mm to the vessel revolved
-/// from the section at `angle_rad` (NaN: the most informative angle), positive outside
-/// (blue-white-red map centred on 0, as `sherd export --regularity`).
-/// `SHERD_STATUS_DEGENERATE_GEOMETRY` when that section has no closed outline.
-///
-/// # Safety
-/// `mesh` must be a live handle; `axis` must have its `size` set; `out_mesh` writable.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn sherd_regularity_mesh(
-    mesh: *const SherdMesh,
-    axis: *const SherdAxis,
-    regularity: u32,
-    angle_rad: f64,
-    out_mesh: *mut *mut SherdMesh,
-) -> SherdStatus {
-    guard("sherd_regularity_mesh", || {
-        let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
-        let axis = unsafe { read_axis(axis, "axis") }?;
-        require(out_mesh.cast_const(), "out_mesh")?;
-        let (values, map) = match regularity {
-            0 => {
-                let values = distance_to_axis(mesh, &axis);
-                let map = ColorMap::fitted(&values, ColorScale::Rainbow, "distance to axis", "mm");
-                (values, map)
-            }
-            1 => {
-                let values = distance_to_ideal_vessel(mesh, &axis, &section_at(mesh, &axis, angle_rad)?)?;
-                let map = ColorMap::fitted(&values, ColorScale::Diverging, "distance to the ideal vessel", "mm");
-                (values, map)
-            }
-            other => return Err(Failure::invalid(format!("`regularity` {other} is not a SHERD_REGULARITY_* value (0 or 1)"))),
-        };
-        unsafe { hand_out(out_mesh, regularity_mesh(mesh, &values, &map)?) }
+        Ok(crate::mesh::io::write_ply(&path, &vessel, ply_encoding(binary))?)
     })
 }

@@ -34,6 +34,11 @@ use halir::HalirOptions;
 use line_complex::{CenteredLines, SamplerOptions};
 use normal_lines::NormalLines;
 
+/// Most Laplacian smoothing iterations [`orient_automatic`] accepts: smoothing past a
+/// few hundred iterations has flattened any sherd, and the bound keeps a hostile option
+/// value (a C caller's `SIZE_MAX`) from running for ever.
+pub const MAX_SMOOTHING_ITERATIONS: usize = 1000;
+
 /// Options of [`orient_automatic`].
 #[derive(Clone, Debug)]
 pub struct OrientOptions {
@@ -152,6 +157,15 @@ pub fn orient_automatic(mesh: &Mesh, options: &OrientOptions) -> Result<Orientat
         *since = Instant::now();
     };
     let mut clock = started;
+    if options.smoothing_iterations > MAX_SMOOTHING_ITERATIONS {
+        return Err(Error::InvalidArgument(format!(
+            "smoothing_iterations must be at most {MAX_SMOOTHING_ITERATIONS}, got {}",
+            options.smoothing_iterations
+        )));
+    }
+    if options.target_vertex_count == 0 {
+        return Err(Error::InvalidArgument("target_vertex_count must be at least 1".into()));
+    }
     mesh.validate()?;
     if mesh.positions.is_empty() {
         return Err(Error::DegenerateGeometry("the mesh is empty: no vertex to orient".into()));

@@ -160,7 +160,12 @@ pub struct Refinement {
     pub pareto_chosen: Option<ParetoPoint>,
 }
 
-fn validate(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Result<()> {
+/// Most horizontal sections a refinement accepts: a section every 0.1 mm of a 1 m sherd.
+/// Each section is a pass over the skins per cost evaluation, so the bound keeps a
+/// hostile option value from asking for unbounded time and memory.
+pub const MAX_SECTION_COUNT: usize = 10_000;
+
+pub(crate) fn validate(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Result<()> {
     if !axis.point.iter().chain(axis.direction.iter()).all(|c| c.is_finite()) {
         return Err(Error::InvalidArgument(format!("start axis is not finite: {:?}", axis.record())));
     }
@@ -178,6 +183,9 @@ fn validate(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Result<()> {
     }
     if options.section_count == Some(0) {
         return Err(Error::InvalidArgument("section_count must be at least 1".into()));
+    }
+    if let Some(count) = options.section_count.filter(|&c| c > MAX_SECTION_COUNT) {
+        return Err(Error::InvalidArgument(format!("section_count must be at most {MAX_SECTION_COUNT}, got {count}")));
     }
     if let Some((i, p)) = mesh.positions.iter().enumerate().find(|(_, p)| !p.iter().all(|c| c.is_finite())) {
         return Err(Error::InvalidArgument(format!("vertex {i} is not finite: {p:?}")));
@@ -360,6 +368,14 @@ pub(crate) fn choose_criterion(surface: &PreparedSurface, options: &RefineOption
 /// median. Tested at the start axis, a rim 3 degrees off on a 70 mm chord rises by 3.5 mm
 /// and would be missed.
 pub fn detect_edges(surface: &PreparedSurface, options: &RefineOptions) -> Vec<tangent::EdgeEvidence> {
+    detect_edges_over(surface, options, [EDGE_LEVEL_FRACTION; 2])
+}
+
+/// [`detect_edges`] accepting the rim (base) level over `min_level_fraction[0]` (`[1]`)
+/// of the vertical sections. Measuring a rim needs less than choosing the tangent criterion: a rim kept
+/// over a third of the arc gives its radius, while its short chord leaves the tilt about
+/// it poorly fixed for Eq. 7.
+pub fn detect_edges_over(surface: &PreparedSurface, options: &RefineOptions, min_level_fraction: [f64; 2]) -> Vec<tangent::EdgeEvidence> {
     let settings = SearchSettings {
         free: FreeParameters::TiltsOnly,
         tilt_bound_rad: options.search_bound_deg.to_radians(),
@@ -383,9 +399,20 @@ pub fn detect_edges(surface: &PreparedSurface, options: &RefineOptions) -> Vec<t
                 .ok()?
                 .parameters
             };
-            Some(tangent::edge_evidence(surface, edge, EDGE_LEVEL_TOLERANCE_MM, options.vertical_section_count, &levelled))
+            let min_level_fraction = min_level_fraction[usize::from(edge == Edge::Base)];
+            let passes = |e: &tangent::EdgeEvidence| e.level_fraction >= min_level_fraction && e.spread_mm <= EDGE_MAX_SPREAD_MM;
+            let evidence = |parameters: &AxisParameters| {
+                tangent::edge_evidence(surface, edge, EDGE_LEVEL_TOLERANCE_MM, options.vertical_section_count, parameters)
+            };
+            let at_levelled = evidence(&levelled);
+            if passes(&at_levelled) {
+                return Some(at_levelled);
+            }
+            // Levelling a partial rim lets the rising break lines pull the plane off it; a
+            // partial edge is then tested at the axis as given.
+            let at_given = evidence(&[0.0; 4]);
+            (min_level_fraction < EDGE_LEVEL_FRACTION && passes(&at_given)).then_some(at_given)
         })
-        .filter(|e| e.level_fraction >= EDGE_LEVEL_FRACTION && e.spread_mm <= EDGE_MAX_SPREAD_MM)
         .collect()
 }
 
@@ -394,7 +421,7 @@ const MIN_PLACING_SECTIONS: usize = 6;
 
 /// A rim or base is level when this share of vertical sections has its extreme within
 /// [`EDGE_LEVEL_TOLERANCE_MM`] of the median extreme.
-const EDGE_LEVEL_FRACTION: f64 = 0.6;
+pub const EDGE_LEVEL_FRACTION: f64 = 0.6;
 /// ...and their median absolute deviation is at most this, mm. On the synthetic corpus
 /// levelled rims and bases spread by 0.01-0.02 mm, levelled break lines by 0.1 mm or more.
 const EDGE_MAX_SPREAD_MM: f64 = 0.08;

@@ -174,11 +174,19 @@ pub fn edge_evidence(
     parameters: &AxisParameters,
 ) -> EdgeEvidence {
     let objective = TangentObjective::new(surface, edge, tolerance_mm, section_count);
-    let mut extremes = objective.extremes(&CandidateFrame::new(parameters));
+    let extremes = objective.extremes(&CandidateFrame::new(parameters));
     if extremes.is_empty() {
         return EdgeEvidence { edge, level_fraction: 0.0, spread_mm: f64::INFINITY };
     }
-    let median = super::sections::quantile(&mut extremes, 0.5);
+    // The level set hangs from the top (rim) or bottom (base) extreme, not from the median
+    // of all sections: where the rim survives over a third of the arc, the break lines
+    // hold the median and the rim would count as not level.
+    let top = match edge {
+        Edge::Rim => extremes.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        Edge::Base => extremes.iter().copied().fold(f64::INFINITY, f64::min),
+    };
+    let mut near_top: Vec<f64> = extremes.iter().copied().filter(|z| (z - top).abs() <= tolerance_mm).collect();
+    let median = super::sections::quantile(&mut near_top, 0.5);
     let level: Vec<f64> = extremes.iter().map(|z| (z - median).abs()).filter(|d| *d <= tolerance_mm).collect();
     let mut deviations = level.clone();
     let spread = if deviations.is_empty() { f64::INFINITY } else { super::sections::quantile(&mut deviations, 0.5) };

@@ -21,6 +21,7 @@ use super::sections::{quantile, PreparedSurface};
 use super::tangent::TangentObjective;
 use super::{choose_criterion, Criterion, RefineOptions};
 use crate::mesh::Mesh;
+use crate::Error;
 use crate::orient::Axis;
 use crate::Result;
 
@@ -52,12 +53,23 @@ fn resample_weights(count: usize, rng: &mut impl Rng) -> Vec<f64> {
     weights
 }
 
+/// Most bootstrap resamples accepted: each is a refinement, and intervals stop changing
+/// long before (the default is 24).
+pub const MAX_BOOTSTRAP_SAMPLES: usize = 10_000;
+
 /// Axes refined again on resampled sections around `axis` (the refined axis) by the
 /// criterion `options` chose.
 pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstrap: &BootstrapOptions) -> Result<Vec<Axis>> {
     if bootstrap.samples == 0 {
         return Ok(Vec::new());
     }
+    if bootstrap.samples > MAX_BOOTSTRAP_SAMPLES {
+        return Err(Error::InvalidArgument(format!(
+            "bootstrap samples must be at most {MAX_BOOTSTRAP_SAMPLES}, got {}",
+            bootstrap.samples
+        )));
+    }
+    super::validate(mesh, axis, options)?;
     let surface = PreparedSurface::new(mesh, axis, options.surface, options.section_count)?;
     let (method, _, edge) = choose_criterion(&surface, options);
     let section_count = surface.horizontal_sections(&super::sections::CandidateFrame::new(&[0.0; 4])).len();

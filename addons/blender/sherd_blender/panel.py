@@ -17,6 +17,8 @@ class SherdSettings(bpy.types.PropertyGroup):
                                           default={"light", "occlusion"})
     drawing_scale_denominator: bpy.props.IntProperty(name="Scale 1:", default=1, min=1, max=1000)
     drawing_dpi: bpy.props.FloatProperty(name="DPI", default=300.0, min=10.0, max=2400.0)
+    reconstruction_segments: bpy.props.IntProperty(name="Segments", default=180, min=3, max=3600)
+    regularity_kind: bpy.props.EnumProperty(name="Map", items=operators.REGULARITY_ITEMS, default="ideal_vessel")
 
 
 def _row(layout, label, value, unit):
@@ -88,6 +90,18 @@ class SHERD_PT_panel(bpy.types.Panel):
         draw.style = settings.drawing_style
         draw.scale_denominator = settings.drawing_scale_denominator
         draw.dpi = settings.drawing_dpi
+
+        box = layout.box()
+        box.label(text="Reconstruction")
+        box.prop(settings, "reconstruction_segments")
+        box.operator(operators.SHERD_OT_reconstruct.bl_idname).segments = settings.reconstruction_segments
+        box.prop(settings, "regularity_kind")
+        box.operator(operators.SHERD_OT_regularity.bl_idname).kind = settings.regularity_kind
+        if "sherd_regularity_range_mm" in obj:
+            low, high = obj["sherd_regularity_range_mm"]
+            names = {"ideal_vessel": ("inside", "outside"), "axis_distance": ("near", "far")}
+            inner, outer = names.get(obj.get("sherd_regularity_kind"), ("low", "high"))
+            box.label(text=f"Blue {inner} {low:.2f} mm, red {outer} {high:.2f} mm")
 
 
 classes = (SherdSettings, SHERD_PT_panel)
