@@ -156,8 +156,10 @@ fn check(arguments: &SynthArgs) -> Result<()> {
     {
         return invalid(format!("--faces {faces} is too few for a closed sherd: give at least 100"));
     }
-    if arguments.faces > sherd::synth::MAX_TARGET_FACES {
-        return invalid(format!("--faces {} is too many: give at most {}", arguments.faces, sherd::synth::MAX_TARGET_FACES));
+    if let Some(faces) = arguments.faces
+        && faces > sherd::synth::MAX_TARGET_FACES
+    {
+        return invalid(format!("--faces {faces} is too many: give at most {}", sherd::synth::MAX_TARGET_FACES));
     }
     if !(arguments.noise_mm >= 0.0 && arguments.noise_mm.is_finite()) {
         return invalid(format!("--noise-mm {} must be a finite number >= 0", arguments.noise_mm));
