@@ -53,4 +53,6 @@ fi
 
 step "Blender add-on (headless Blender)"; bash tests/blender/run.sh
 
+step "MeshLab filter plugin (MeshLab 2022.02 sources, pymeshlab 2022.2.post4)"; bash tests/meshlab/run.sh
+
 step "all tests passed"
