@@ -51,6 +51,8 @@ if compgen -G "tests/python/test_*.py" >/dev/null; then
   python3 -m pytest -q tests/python
 fi
 
-step "Blender add-on (headless Blender)"; bash tests/blender/run.sh
+step "Python wheel (manylinux_2_28, installed in a fresh venv)"; bash tests/wheel/run.sh
+
+step "Blender add-on (headless Blender 3.4 and the bpy 4.2 module)"; bash tests/blender/run.sh
 
 step "all tests passed"
