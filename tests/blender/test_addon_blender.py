@@ -27,7 +27,8 @@ REAL_SCAN = ROOT.parent / "shared" / "data" / "dacord" / "A011.ply"
 
 def install_addon():
     """Blender 4.2+ (e.g. the bpy wheel): the extension zip with Blender's extension
-    installer; Blender 3.x: the legacy add-on zip."""
+    installer, which installs the sherd wheel inside it; Blender 3.x: the legacy add-on
+    zip with the package vendored. Returns the sherd package the add-on uses."""
     import importlib
     if bpy.app.version >= (4, 2, 0):
         package = Path(os.environ.get("SHERD_EXTENSION_ZIP", ZIP.parent / "sherd_extension.zip"))
@@ -35,18 +36,23 @@ def install_addon():
         assert bpy.ops.extensions.package_install_files(
             filepath=str(package), repo="user_default", enable_on_install=True) == {'FINISHED'}
         module = "bl_ext.user_default.sherd"
+        # The extension's wheel, installed into Blender's own site-packages for extensions.
+        vendored = importlib.import_module("sherd")
+        home = Path(bpy.utils.user_resource('EXTENSIONS')).resolve()
     else:
         assert ZIP.is_file(), f"{ZIP} is missing: run addons/blender/build.sh"
         assert bpy.ops.preferences.addon_install(filepath=str(ZIP), overwrite=True) == {'FINISHED'}
         assert bpy.ops.preferences.addon_enable(module="sherd_blender") == {'FINISHED'}
         module = "sherd_blender"
-    addon = importlib.import_module(module)
+        vendored = importlib.import_module(f"{module}.sherd")
+        home = Path(importlib.import_module(module).__file__).resolve().parent
     operators = importlib.import_module(f"{module}.operators")
-    vendored = importlib.import_module(f"{module}.sherd")
+    assert importlib.import_module(f"{module}.library").sherd() is vendored
     # The bundled library, not one found elsewhere (run.sh unsets SHERD_LIBRARY).
-    assert Path(vendored.__file__).parent.parent == Path(addon.__file__).parent
-    assert (Path(vendored.__file__).parent / "libsherd.so").is_file()
-    print(f"Blender {bpy.app.version_string}: {module} enabled")
+    library = Path(vendored.lib._name).resolve()
+    assert library == Path(vendored.__file__).resolve().parent / "libsherd.so", library
+    assert home in library.parents, f"{library} is not inside {home}"
+    print(f"Blender {bpy.app.version_string}: {module} enabled, library {library}")
     return vendored, operators
 
 
