@@ -298,7 +298,7 @@ fn working_copy(mesh: &Mesh, options: &OrientOptions) -> Result<Mesh> {
     // of 2 mm cells went 80 degrees wrong), while its normals are not noisy at that scale.
     let decimated = mesh.face_count() > 2 * options.target_vertex_count;
     let mut working =
-        if decimated { crate::mesh::decimate::decimate(mesh, 2 * options.target_vertex_count)? } else { mesh.clone() };
+        if decimated { decimate_shape(mesh, 2 * options.target_vertex_count)? } else { mesh.clone() };
     if decimated && options.smoothing_iterations > 0 {
         let smoothing = crate::mesh::smooth::SmoothOptions {
             iterations: options.smoothing_iterations,
@@ -308,6 +308,16 @@ fn working_copy(mesh: &Mesh, options: &OrientOptions) -> Result<Mesh> {
     }
     working.normals = None; // recomputed from the smoothed faces by NormalLines
     Ok(working)
+}
+
+/// `mesh` decimated to `target_faces` for its shape alone: texture seams would only hold
+/// collapses back, and the orientation never looks at the texture.
+fn decimate_shape(mesh: &Mesh, target_faces: usize) -> Result<Mesh> {
+    let options = crate::mesh::decimate::DecimateOptions {
+        keep_texture_coordinates: false,
+        ..crate::mesh::decimate::DecimateOptions::with_target_faces(target_faces)
+    };
+    crate::mesh::decimate::decimate_with_options(mesh, &options).map(|(decimated, _)| decimated)
 }
 
 /// The lines on the surface of revolution: the opposite-normal test on meshes, all lines
