@@ -79,7 +79,8 @@ fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
             _ => Criterion::Auto,
         };
         let start = perturbed(&truth.axis, seed);
-        match refine(&sherd.mesh, &start, &RefineOptions { criterion, ..Default::default() }) {
+        let place = std::env::var_os("PLACE_BY_CIRCLES").is_some();
+        match refine(&sherd.mesh, &start, &RefineOptions { criterion, tangent_places_by_circles: place, ..Default::default() }) {
             Ok(r) => (r.axis, false, format!("{:?}", r.report.method)),
             Err(_) => (start, true, "refine failed".into()),
         }

@@ -400,10 +400,15 @@ pub fn detect_edges_over(surface: &PreparedSurface, options: &RefineOptions, min
             if passes(&at_levelled) {
                 return Some(at_levelled);
             }
-            // Levelling a partial rim lets the rising break lines pull the plane off it; a
-            // partial edge is then tested at the axis as given.
-            let at_given = evidence(&[0.0; 4]);
-            (min_level_fraction < EDGE_LEVEL_FRACTION && passes(&at_given)).then_some(at_given)
+            // A partial edge is level from its top, and levelling it lets the rising break
+            // lines pull the plane off it: it is also tested at the axis as given.
+            if min_level_fraction >= EDGE_LEVEL_FRACTION {
+                return None;
+            }
+            let partial = |parameters: &AxisParameters| {
+                tangent::partial_edge_evidence(surface, edge, EDGE_LEVEL_TOLERANCE_MM, options.vertical_section_count, parameters)
+            };
+            [levelled, [0.0; 4]].iter().map(partial).find(passes)
         })
         .collect()
 }
