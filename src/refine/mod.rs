@@ -406,7 +406,7 @@ pub fn detect_edges_over(surface: &PreparedSurface, options: &RefineOptions, min
                 return None;
             }
             let partial = |parameters: &AxisParameters| {
-                tangent::partial_edge_evidence(surface, edge, EDGE_LEVEL_TOLERANCE_MM, options.vertical_section_count, parameters)
+                tangent::edge_evidence_anchored(surface, edge, EDGE_LEVEL_TOLERANCE_MM, options.vertical_section_count, parameters, true)
             };
             [levelled, [0.0; 4]].iter().map(partial).find(passes)
         })

@@ -221,23 +221,14 @@ pub fn edge_evidence(
     section_count: usize,
     parameters: &AxisParameters,
 ) -> EdgeEvidence {
-    evidence_about(surface, edge, tolerance_mm, section_count, parameters, false)
+    edge_evidence_anchored(surface, edge, tolerance_mm, section_count, parameters, false)
 }
 
-/// [`edge_evidence`] with the level set hung from the top (rim) or bottom (base) extreme
-/// instead of the median of all sections: where the rim survives over a third of the
-/// arc, the break lines hold the median and the rim would count as not level.
-pub fn partial_edge_evidence(
-    surface: &PreparedSurface,
-    edge: Edge,
-    tolerance_mm: f64,
-    section_count: usize,
-    parameters: &AxisParameters,
-) -> EdgeEvidence {
-    evidence_about(surface, edge, tolerance_mm, section_count, parameters, true)
-}
-
-fn evidence_about(
+/// [`edge_evidence`], with the level set hung from the top (rim) or bottom (base)
+/// extreme when `from_top` instead of from the median of all sections: where the rim
+/// survives over a third of the arc, the break lines hold the median and the rim would
+/// count as not level.
+pub fn edge_evidence_anchored(
     surface: &PreparedSurface,
     edge: Edge,
     tolerance_mm: f64,
