@@ -25,7 +25,7 @@ use super::circles::CirclesObjective;
 use super::objective::{minimize, FreeParameters, SearchSettings};
 use super::sections::{quantile, PreparedSurface};
 use super::tangent::TangentObjective;
-use super::{choose_criterion, Criterion, RefineOptions};
+use super::{choose_criterion, place_by_circles, Criterion, RefineOptions};
 use crate::mesh::Mesh;
 use crate::orient::Axis;
 use crate::Result;
@@ -115,10 +115,10 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
                     let [base_x, base_y] = tangent.plane_tilts(&start, None)?;
                     let [tilt_x, tilt_y] = tangent.plane_tilts(&start, Some(&weights))?;
                     start = [tilt_x - base_x, tilt_y - base_y, 0.0, 0.0];
-                    if !options.tangent_places_by_circles {
-                        return Some(surface.axis_of(&start));
+                    if options.tangent_places_by_circles {
+                        start = place_by_circles(&circles, start, &settings).map_or(start, |(placed, _)| placed);
                     }
-                    FreeParameters::ShiftsOnly
+                    return Some(surface.axis_of(&start));
                 }
                 _ => options.free,
             };
