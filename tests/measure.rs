@@ -23,7 +23,6 @@ fn true_capacity_litres(inner_profile: &[[f64; 2]]) -> f64 {
 }
 
 #[test]
-#[ignore = "known defect (issue 4): the bootstrap intervals are not calibrated; on the merged generator the diameter interval of some rims is 40% wide and the axis interval 0 or 20 deg (coverage in BENCHMARKS.md, Refinement)"]
 fn rim_sherd_measured_at_its_true_axis() {
     let mut checked = 0;
     for seed in 0..6 {

@@ -264,8 +264,8 @@ pub fn measure(mesh: &Mesh, axis: &Axis, options: &MeasureOptions) -> Measuremen
             let interval = |estimate: Option<f64>, edge: Edge| {
                 let estimate = estimate?;
                 let values: Vec<f64> = replicate_points.iter().filter_map(|p| edge_radius(p, &outer_skin, edge)).collect();
-                // Scanner noise on the edge points is not resampled: at least 0.2% of the radius.
-                value_interval(estimate, &values, estimate * 0.002, &options.bootstrap).map(|[a, b]| [2.0 * a, 2.0 * b])
+                value_interval(estimate, &values, estimate * options.bootstrap.diameter_floor_fraction, &options.bootstrap)
+                    .map(|[a, b]| [2.0 * a, 2.0 * b])
             };
             measurements.rim_diameter_interval_mm = interval(measurements.rim_radius_mm, Edge::Rim);
             measurements.base_diameter_interval_mm = interval(measurements.base_radius_mm, Edge::Base);

@@ -77,10 +77,11 @@ pub struct RefineOptions {
     /// Rim or base for the tangent criterion; `None`: the one whose extremes are level.
     pub edge: Option<Edge>,
     /// After the tangent plane has fixed the direction, place the axis by the circles
-    /// criterion (two shifts). Off by default: the plane's direction then turns about the
-    /// start axis's point at the fragment's centroid height, which on the synthetic
-    /// corpus (deformed vessels, starts 2 mm off) left 91% of fragments within 4 mm
-    /// against 82% when placed by circles (`examples/refine_accuracy.rs`).
+    /// criterion (two shifts) where the skins fix its position (see `place_by_circles`);
+    /// otherwise, or when off, the plane's direction turns about the start axis's point at
+    /// the fragment's centroid height and keeps the start's position error there (6 mm on
+    /// tall vessels in `examples/refine_accuracy.rs`, whose starts are turned 3 degrees
+    /// about the base). Placing unconditionally moved short arcs 5-10 mm off.
     pub tangent_places_by_circles: bool,
 }
 
@@ -97,7 +98,7 @@ impl Default for RefineOptions {
             tangent_tolerance_mm: 3.0,
             vertical_section_count: 12,
             edge: None,
-            tangent_places_by_circles: false,
+            tangent_places_by_circles: true,
         }
     }
 }
@@ -242,20 +243,8 @@ pub fn refine(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Result<Refin
                 }
             };
             let circles = circles::CirclesObjective::new(&surface);
-            let shifts = SearchSettings { free: FreeParameters::ShiftsOnly, ..settings };
-            // When asked, the skins place the axis if enough sections cut them; otherwise
-            // (a base with its floor, a flat piece) the plane fixes only the direction
-            // and the axis turns about the start axis's point at the centroid's height.
-            let usable_sections = surface
-                .horizontal_sections(&sections::CandidateFrame::new(&tilted))
-                .iter()
-                .filter(|s| s.points.len() >= circles::MIN_SECTION_POINTS)
-                .count();
-            let placed = if options.tangent_places_by_circles && usable_sections >= MIN_PLACING_SECTIONS {
-                match minimize(&circles, tilted, &shifts) {
-                    Ok(placed) => (placed.parameters, placed.iterations),
-                    Err(_) => (tilted, 0),
-                }
+            let placed = if options.tangent_places_by_circles {
+                place_by_circles(&circles, tilted, &settings).unwrap_or((tilted, 0))
             } else {
                 (tilted, 0)
             };
@@ -310,6 +299,50 @@ pub fn refine(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Result<Refin
     };
     Ok(Refinement { axis: refined, report, pareto_front, pareto_chosen })
 }
+
+/// The axis with the tilts of `tilted` placed by the circles criterion (two shifts), and
+/// the iterations, when the skins fix its position: enough horizontal sections cut them,
+/// and moving the placed axis [`PLACING_PROBE_MM`] towards or away from the fragment
+/// raises Eq. 2 at least [`MIN_PLACING_CURVATURE`]-fold. On a short arc of a deformed
+/// vessel Eq. 2 barely changes along that radial line (each section's radius follows the
+/// centre), and the placement wanders 5-10 mm; `None` then, and the plane's direction
+/// turns about the start axis's point at the centroid's height.
+pub(crate) fn place_by_circles(
+    circles: &circles::CirclesObjective,
+    tilted: AxisParameters,
+    settings: &SearchSettings,
+) -> Option<(AxisParameters, u64)> {
+    let usable_sections = circles
+        .surface
+        .horizontal_sections(&sections::CandidateFrame::new(&tilted))
+        .iter()
+        .filter(|s| s.points.len() >= circles::MIN_SECTION_POINTS)
+        .count();
+    if usable_sections < MIN_PLACING_SECTIONS {
+        return None;
+    }
+    let placed = minimize(circles, tilted, &SearchSettings { free: FreeParameters::ShiftsOnly, ..*settings }).ok()?;
+    let p = placed.parameters;
+    // The fragment's centroid is the start frame's origin: the radial line runs from the
+    // axis's crossing of z = 0 towards it.
+    let distance = p[2].hypot(p[3]);
+    if distance < 1e-9 || !(placed.value > 0.0) {
+        return Some((p, placed.iterations));
+    }
+    let moved = |step_mm: f64| {
+        let scale = step_mm / distance;
+        circles.value(&[p[0], p[1], p[2] - scale * p[2], p[3] - scale * p[3]])
+    };
+    let curvature = (moved(PLACING_PROBE_MM) + moved(-PLACING_PROBE_MM)) / 2.0 / placed.value - 1.0;
+    (curvature >= MIN_PLACING_CURVATURE).then_some((p, placed.iterations))
+}
+
+/// How far the placed axis is moved along the radial line to test its conditioning, mm.
+const PLACING_PROBE_MM: f64 = 2.0;
+/// Least relative rise of Eq. 2 over that move for the placement to count. On the
+/// synthetic corpus (3 vessels, `REFINE_ACCURACY_DUMP`) placements that wandered 5-10 mm
+/// rose 0.04-11-fold, those that brought the axis within 1 mm of the truth 13-900-fold.
+const MIN_PLACING_CURVATURE: f64 = 12.0;
 
 /// `axis` pointing the same way (base to rim) as `reference`.
 fn orient_like(axis: &Axis, reference: &Axis) -> Axis {
@@ -408,10 +441,15 @@ pub fn detect_edges_over(surface: &PreparedSurface, options: &RefineOptions, min
             if passes(&at_levelled) {
                 return Some(at_levelled);
             }
-            // Levelling a partial rim lets the rising break lines pull the plane off it; a
-            // partial edge is then tested at the axis as given.
-            let at_given = evidence(&[0.0; 4]);
-            (min_level_fraction < EDGE_LEVEL_FRACTION && passes(&at_given)).then_some(at_given)
+            // A partial edge is level from its top, and levelling it lets the rising break
+            // lines pull the plane off it: it is also tested at the axis as given.
+            if min_level_fraction >= EDGE_LEVEL_FRACTION {
+                return None;
+            }
+            let partial = |parameters: &AxisParameters| {
+                tangent::edge_evidence_anchored(surface, edge, EDGE_LEVEL_TOLERANCE_MM, options.vertical_section_count, parameters, true)
+            };
+            [levelled, [0.0; 4]].iter().map(partial).find(passes)
         })
         .collect()
 }
