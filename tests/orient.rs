@@ -277,6 +277,15 @@ fn synthetic_corpus_meets_the_accuracy_goals() {
         100.0 * summary.wrong_angle_unflagged_fraction
     );
     assert!(summary.flagged_fraction < 0.6, "{:.0}% flagged", 100.0 * summary.flagged_fraction);
+    // The paper's distance counts the sense: an upside-down piece is wrong however good
+    // its axis line.
+    assert!(
+        summary.wrong_distance_unflagged_fraction <= 0.05,
+        "{:.1}% of the fragments are more than 4 mm off (sense included) and not flagged",
+        100.0 * summary.wrong_distance_unflagged_fraction
+    );
+    let upside_down: Vec<&str> = outcomes.iter().filter(|o| !o.flagged && !o.sense_correct).map(|o| o.id.as_str()).collect();
+    assert!(upside_down.is_empty(), "oriented upside down and not flagged: {upside_down:?}");
 }
 
 /// Rim pieces (the generator's seeds 1-16): each one is either oriented within 5 degrees
