@@ -138,10 +138,12 @@ pub struct OrientReport {
     pub raw_angle_sigma_deg: f64,
     /// Angle to the best competing axis, degrees, and its cost relative to the best.
     pub competitor: Option<(f64, f64)>,
-    /// The cue that set the sense base to rim, and its strength.
+    /// The cue that set the sense base to rim, or why none could.
     pub direction_cue: String,
-    /// Strength of that cue (see [`direction::DirectionEvidence`]).
+    /// Confidence in the sense base to rim, 0 to 1 (see [`direction::DirectionEvidence`]).
     pub direction_strength: f64,
+    /// The figures of each sense cue.
+    pub sense_cues: direction::SenseCues,
     /// Radius of the picked circle (manual), millimetres.
     pub circle_radius_mm: Option<f64>,
     /// Wall-clock milliseconds per step.
@@ -214,12 +216,13 @@ pub fn orient_automatic(mesh: &Mesh, options: &OrientOptions) -> Result<Orientat
     report.residual_scale_mm = fit.scale * scale_mm;
     report.raw_angle_sigma_deg = fit.angle_sigma_rad.to_degrees();
     report.competitor = verdict::best_competitor(&fit);
-    let evidence = direction::direction_evidence(&lines, &inliers, &axis);
+    let evidence = direction::direction_evidence(&lines, &inliers, &all_lines.points, &axis);
     if evidence.score < 0.0 {
         axis = axis.flipped();
     }
     report.direction_cue = evidence.cue;
     report.direction_strength = evidence.score.abs();
+    report.sense_cues = evidence.cues;
     axis = axis.normalized(&lines.centroid());
     let mut radii: Vec<f64> = lines.points.iter().map(|p| axis.distance_to(p)).collect();
     radii.sort_by(f64::total_cmp);
@@ -396,7 +399,7 @@ pub fn orient_from_three_points(mesh: &Mesh, points: [Point; 3], options: &Manua
         &axis,
         &surfaces::SegmentOptions { max_line_distance_mm: None, keep_fraction: Some(options.keep_fraction) },
     );
-    let evidence = direction::direction_evidence(&lines, &keep, &axis);
+    let evidence = direction::direction_evidence(&lines, &keep, &lines.points, &axis);
     if evidence.score < 0.0 {
         axis = axis.flipped();
     }
@@ -409,6 +412,7 @@ pub fn orient_from_three_points(mesh: &Mesh, points: [Point; 3], options: &Manua
         opposite_filter: "not applied (manual)".into(),
         direction_cue: evidence.cue,
         direction_strength: evidence.score.abs(),
+        sense_cues: evidence.cues,
         circle_radius_mm: Some(circle.radius_mm),
         ..Default::default()
     };
