@@ -173,6 +173,16 @@ pub fn process_file(path: &Path, options: &PipelineOptions, drawing: Option<(&Dr
     let mut record = SherdRecord::from_analysis(file, &analysis, options.scale());
     if let (Some((draw_options, output)), true) = (drawing, analysis.is_oriented()) {
         let clock = Instant::now();
+        // The measurements just made (with their intervals) label the drawing, rather
+        // than being made again without intervals.
+        let labelled;
+        let draw_options = match (&draw_options.measurements, &analysis.measurements) {
+            (None, Some(measurements)) => {
+                labelled = DrawOptions { measurements: Some(measurements.clone()), ..draw_options.clone() };
+                &labelled
+            }
+            _ => draw_options,
+        };
         let written = Drawing::build(&analysis.mesh, analysis.axis(), draw_options).and_then(|d| d.write(output));
         record.timings.draw_s = clock.elapsed().as_secs_f64();
         match written {
