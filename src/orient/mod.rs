@@ -152,6 +152,30 @@ pub struct OrientReport {
 
 /// The automatic pre-orientation of a mesh or of a point cloud with normals.
 pub fn orient_automatic(mesh: &Mesh, options: &OrientOptions) -> Result<Orientation> {
+    check_orientable(mesh, options)?;
+    let clock = Instant::now();
+    let decimated = decimated_copy(mesh, options)?;
+    let decimation_ms = clock.elapsed().as_secs_f64() * 1e3;
+    let mut orientation = orient_automatic_with_decimated(mesh, decimated.as_ref(), options)?;
+    orientation.report.timings_ms.insert(0, ("decimation".into(), decimation_ms));
+    Ok(orientation)
+}
+
+/// The decimated copy of `mesh` the automatic pre-orientation works on, before it is
+/// smoothed: about two faces per wanted vertex (quadric edge collapse). `None` when the
+/// mesh is a point cloud or has no more faces than that already. The pipeline refines
+/// and bootstraps on the same copy, so that a large scan is decimated once.
+pub fn decimated_copy(mesh: &Mesh, options: &OrientOptions) -> Result<Option<Mesh>> {
+    check_options(options)?;
+    if mesh.is_point_cloud() || mesh.face_count() <= 2 * options.target_vertex_count {
+        return Ok(None);
+    }
+    crate::mesh::decimate::decimate(mesh, 2 * options.target_vertex_count).map(Some)
+}
+
+/// [`orient_automatic`] given `decimated`, the [`decimated_copy`] of `mesh` with the same
+/// options (made beforehand by a caller that uses it again).
+pub fn orient_automatic_with_decimated(mesh: &Mesh, decimated: Option<&Mesh>, options: &OrientOptions) -> Result<Orientation> {
     let started = Instant::now();
     let mut timings = Vec::new();
     let mut lap = |name: &str, since: &mut Instant| {
@@ -159,21 +183,8 @@ pub fn orient_automatic(mesh: &Mesh, options: &OrientOptions) -> Result<Orientat
         *since = Instant::now();
     };
     let mut clock = started;
-    if options.smoothing_iterations > MAX_SMOOTHING_ITERATIONS {
-        return Err(Error::InvalidArgument(format!(
-            "smoothing_iterations must be at most {MAX_SMOOTHING_ITERATIONS}, got {}",
-            options.smoothing_iterations
-        )));
-    }
-    if options.target_vertex_count == 0 {
-        return Err(Error::InvalidArgument("target_vertex_count must be at least 1".into()));
-    }
-    mesh.validate()?;
-    if mesh.positions.is_empty() {
-        return Err(Error::DegenerateGeometry("the mesh is empty: no vertex to orient".into()));
-    }
-    reject_coplanar(mesh)?;
-    let working = working_copy(mesh, options)?;
+    check_orientable(mesh, options)?;
+    let working = working_copy(mesh, decimated, options)?;
     lap("working copy", &mut clock);
     let all_lines = NormalLines::from_mesh(&working)?;
     let mut report = OrientReport {
@@ -240,6 +251,30 @@ pub fn orient_automatic(mesh: &Mesh, options: &OrientOptions) -> Result<Orientat
     Ok(Orientation { axis, verdict, angle_uncertainty_deg, position_uncertainty_mm, kept_vertex_count, report })
 }
 
+/// Options in their bounds and a valid, non-empty mesh whose vertices are not all in one plane.
+fn check_orientable(mesh: &Mesh, options: &OrientOptions) -> Result<()> {
+    check_options(options)?;
+    mesh.validate()?;
+    if mesh.positions.is_empty() {
+        return Err(Error::DegenerateGeometry("the mesh is empty: no vertex to orient".into()));
+    }
+    reject_coplanar(mesh)
+}
+
+/// Option values that would make orientation run for ever or decimate to nothing.
+fn check_options(options: &OrientOptions) -> Result<()> {
+    if options.smoothing_iterations > MAX_SMOOTHING_ITERATIONS {
+        return Err(Error::InvalidArgument(format!(
+            "smoothing_iterations must be at most {MAX_SMOOTHING_ITERATIONS}, got {}",
+            options.smoothing_iterations
+        )));
+    }
+    if options.target_vertex_count == 0 {
+        return Err(Error::InvalidArgument("target_vertex_count must be at least 1".into()));
+    }
+    Ok(())
+}
+
 /// All vertices in one plane: no thickness and no curvature, nothing to orient (an error,
 /// unlike a flat but thick base piece, which is a verdict).
 fn reject_coplanar(mesh: &Mesh) -> Result<()> {
@@ -273,8 +308,9 @@ fn unoriented(mesh: &Mesh, reason: String, report: OrientReport, kept: usize) ->
 }
 
 /// The working copy the paper orients on: decimated to about the target vertex count
-/// and smoothed (meshes); point clouds are thinned by an even stride.
-fn working_copy(mesh: &Mesh, options: &OrientOptions) -> Result<Mesh> {
+/// (`decimated`, from [`decimated_copy`]) and smoothed (meshes); point clouds are thinned
+/// by an even stride.
+fn working_copy(mesh: &Mesh, decimated: Option<&Mesh>, options: &OrientOptions) -> Result<Mesh> {
     if mesh.is_point_cloud() {
         if mesh.normals.is_none() {
             return Err(Error::InvalidArgument(
@@ -299,10 +335,11 @@ fn working_copy(mesh: &Mesh, options: &OrientOptions) -> Result<Mesh> {
     // A mesh already coarser than the target is not smoothed: its edges are long next to
     // the wall thickness and smoothing would round the whole sherd (measured: rim pieces
     // of 2 mm cells went 80 degrees wrong), while its normals are not noisy at that scale.
-    let decimated = mesh.face_count() > 2 * options.target_vertex_count;
-    let mut working =
-        if decimated { decimate_shape(mesh, 2 * options.target_vertex_count)? } else { mesh.clone() };
-    if decimated && options.smoothing_iterations > 0 {
+    let mut working = match decimated {
+        Some(decimated) => decimated.clone(),
+        None => mesh.clone(),
+    };
+    if decimated.is_some() && options.smoothing_iterations > 0 {
         let smoothing = crate::mesh::smooth::SmoothOptions {
             iterations: options.smoothing_iterations,
             ..Default::default()

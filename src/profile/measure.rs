@@ -197,6 +197,13 @@ fn capacity_litres(outlines: &[Vec<[f64; 2]>], top: f64) -> Option<f64> {
 
 /// Measures `mesh` oriented by `axis` (refined as `options.refine` says).
 pub fn measure(mesh: &Mesh, axis: &Axis, options: &MeasureOptions) -> Measurements {
+    measure_with_bootstrap_mesh(mesh, mesh, axis, options)
+}
+
+/// [`measure`], with the bootstrap of the intervals refining the axis on
+/// `bootstrap_mesh` (a decimated copy of `mesh`: the pipeline's, for large scans) while
+/// every measurement and its replicates are taken on `mesh` itself.
+pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Axis, options: &MeasureOptions) -> Measurements {
     let mut measurements = Measurements::default();
     if mesh.positions.len() < 10 {
         measurements.notes.push(format!("too few vertices to measure: {}", mesh.positions.len()));
@@ -253,7 +260,7 @@ pub fn measure(mesh: &Mesh, axis: &Axis, options: &MeasureOptions) -> Measuremen
         measurements.notes.push("the profile section is empty".into());
     }
 
-    match bootstrap_axes(mesh, axis, &options.refine, &options.bootstrap) {
+    match bootstrap_axes(bootstrap_mesh, axis, &options.refine, &options.bootstrap) {
         Ok(replicates) if !replicates.is_empty() => {
             measurements.axis_angle_interval_deg = angle_interval_deg(axis, &replicates, &options.bootstrap);
             let replicate_points: Vec<Vec<Point>> = if has_rim || has_base {
