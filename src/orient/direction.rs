@@ -230,8 +230,8 @@ const MAX_EDGE_TILT: f64 = 0.05;
 const LEVEL_BAND_MM: f64 = 0.3;
 
 /// How level one end is: the smallest median absolute deviation of the sections' ends
-/// (`values`, outward positive) and the largest fraction of sections whose end lies
-/// within [`LEVEL_BAND_MM`] of the outermost, over the tilts up to [`MAX_EDGE_TILT`]
+/// (`values`, outward positive, in order round the axis) and the largest fraction of
+/// sections in one run whose ends lie within [`LEVEL_BAND_MM`] of the outermost, over the tilts up to [`MAX_EDGE_TILT`]
 /// about either horizontal direction (`lever`: what a unit tilt about each moves a
 /// section's end by).
 fn level_measures(values: &[f64], lever: &[[f64; 2]]) -> (f64, f64) {
@@ -252,8 +252,13 @@ fn level_measures(values: &[f64], lever: &[[f64; 2]]) -> (f64, f64) {
             let mut sorted = detilted.clone();
             sorted.sort_by(|a, b| b.total_cmp(a));
             let outermost = sorted[1.min(sorted.len() - 1)];
-            let on_edge = detilted.iter().filter(|v| (outermost - **v).abs() <= LEVEL_BAND_MM).count();
-            best_fraction = best_fraction.max(on_edge as f64 / values.len() as f64);
+            // A rim is one arc: the longest run of neighbouring sections on the edge.
+            let (mut run, mut longest) = (0usize, 0usize);
+            for v in &detilted {
+                run = if (outermost - v).abs() <= LEVEL_BAND_MM { run + 1 } else { 0 };
+                longest = longest.max(run);
+            }
+            best_fraction = best_fraction.max(longest as f64 / values.len() as f64);
         }
     }
     (best_spread, best_fraction)
@@ -269,15 +274,23 @@ fn level_edge_cue(ends: &ProfileEnds) -> (f64, String) {
     };
     let ratio = other / level.max(1e-3);
     let rise = level_end[1] - other_end[1];
-    if level > LEVEL_SPREAD_MM
-        || ratio < LEVEL_MIN_RATIO
-        || level_fraction < MIN_LEVEL_FRACTION
-        || (other_fraction > 0.5 * level_fraction && ratio < LEVEL_FULL_RATIO)
-        || rise.abs() < MIN_RISE_MM
-    {
+    if level_fraction < MIN_LEVEL_FRACTION || rise.abs() < MIN_RISE_MM {
         return (0.0, String::new());
     }
-    let strength = ((ratio.ln() - LEVEL_MIN_RATIO.ln()) / (LEVEL_FULL_RATIO.ln() - LEVEL_MIN_RATIO.ln())).clamp(0.0, 1.0);
+    // With the rim along most of the arc the spreads compare the two ends directly; along
+    // less than half of it they measure the breaks beside the rim, and only the runs of
+    // level sections compare.
+    let strength = if level_fraction >= 0.5 {
+        if level > LEVEL_SPREAD_MM || ratio < LEVEL_MIN_RATIO || (other_fraction > 0.5 * level_fraction && ratio < LEVEL_FULL_RATIO) {
+            return (0.0, String::new());
+        }
+        ((ratio.ln() - LEVEL_MIN_RATIO.ln()) / (LEVEL_FULL_RATIO.ln() - LEVEL_MIN_RATIO.ln())).clamp(0.0, 1.0)
+    } else {
+        (1.0 - other_fraction / (0.5 * level_fraction)).clamp(0.0, 1.0)
+    };
+    if strength <= 0.0 {
+        return (0.0, String::new());
+    }
     let figures = format!(
         "{:.0}% of the sections end on it within {LEVEL_BAND_MM} mm, spread {level:.2} mm against {other:.2} mm at the other end",
         100.0 * level_fraction
