@@ -154,22 +154,26 @@ impl PipelineOptions {
     }
 }
 
+/// Reads `path` and analyses it; the error says why it could not (the C ABI turns its
+/// kind into a status, [`process_file`] into a record).
+pub fn analyse_file(path: &Path, options: &PipelineOptions) -> Result<Analysis> {
+    let clock = Instant::now();
+    let mesh = read_mesh(path)?;
+    let read_s = clock.elapsed().as_secs_f64();
+    let mut analysis = analyse(mesh, options)?;
+    analysis.timings.read_s = read_s;
+    Ok(analysis)
+}
+
 /// Reads `path`, analyses it and, when `drawing` is given and the sherd is oriented, draws
 /// it to that file. Never fails: an unreadable or unorientable scan is a record whose
 /// status says so, so that a batch goes on.
 pub fn process_file(path: &Path, options: &PipelineOptions, drawing: Option<(&DrawOptions, &Path)>) -> SherdRecord {
     let file = path.display().to_string();
-    let clock = Instant::now();
-    let mesh = match read_mesh(path) {
-        Ok(mesh) => mesh,
-        Err(error) => return SherdRecord::failed(file, &error),
-    };
-    let read_s = clock.elapsed().as_secs_f64();
-    let mut analysis = match analyse(mesh, options) {
+    let analysis = match analyse_file(path, options) {
         Ok(analysis) => analysis,
         Err(error) => return SherdRecord::failed(file, &error),
     };
-    analysis.timings.read_s = read_s;
     let mut record = SherdRecord::from_analysis(file, &analysis, options.scale());
     if let (Some((draw_options, output)), true) = (drawing, analysis.is_oriented()) {
         let clock = Instant::now();
