@@ -64,7 +64,7 @@ fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
             Ok(orientation) => {
                 let flagged = !orientation.verdict.is_oriented();
                 match refine(&sherd.mesh, &orientation.axis, &RefineOptions::default()) {
-                    Ok(r) => (r.axis, flagged, format!("{:?}", r.report.method)),
+                    Ok(r) => (r.axis, flagged || r.report.flagged, format!("{:?}", r.report.method)),
                     Err(_) => (orientation.axis, true, "refine failed".into()),
                 }
             }
@@ -93,7 +93,7 @@ fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
                         r.report.start_residual_mm, r.report.residual_mm, at(&start), at(&r.axis), at(&truth.axis), truth.sector_angle_deg
                     );
                 }
-                (r.axis, false, format!("{:?}", r.report.method))
+                (r.axis, r.report.flagged, format!("{:?}", r.report.method))
             }
             Err(_) => (start, true, "refine failed".into()),
         }
