@@ -9,7 +9,7 @@ use std::time::Instant;
 use serde::{Deserialize, Serialize};
 
 use crate::draw::{DrawOptions, Drawing};
-use crate::mesh::io::read_mesh;
+use crate::mesh::io::read_mesh_with_report;
 use crate::mesh::repair::{repair, RepairOptions, RepairReport};
 use crate::mesh::{Mesh, Point};
 use crate::orient::{orient_automatic, orient_from_three_points, Axis, AxisRecord, ManualOptions, OrientOptions, Orientation, Verdict};
@@ -20,7 +20,8 @@ use crate::{Error, Result};
 /// What to do with a scan.
 #[derive(Clone, Debug, Default)]
 pub struct PipelineOptions {
-    /// Millimetres per scan unit (1 for mm, 10 for cm, 1000 for m).
+    /// Millimetres per scan unit (1 for mm, 10 for cm, 1000 for m); 0 (the default)
+    /// means: the unit the file declares ([`crate::mesh::io::unit_declared_in`]), else mm.
     pub millimetres_per_unit: f64,
     /// Repair before processing.
     pub repair: RepairOptions,
@@ -122,6 +123,18 @@ impl PipelineOptions {
     pub fn scale(&self) -> f64 {
         if self.millimetres_per_unit > 0.0 { self.millimetres_per_unit } else { 1.0 }
     }
+
+    /// These options for a file that declares `declared` as its unit: an unset unit
+    /// takes the file's; one given explicitly is kept.
+    pub fn with_declared_unit(&self, declared: Option<crate::mesh::io::LengthUnit>) -> Self {
+        let mut options = self.clone();
+        if options.millimetres_per_unit <= 0.0
+            && let Some(millimetres) = declared.and_then(|unit| unit.millimetres())
+        {
+            options.millimetres_per_unit = millimetres;
+        }
+        options
+    }
 }
 
 /// Reads `path`, analyses it and, when `drawing` is given and the sherd is oriented, draws
@@ -130,10 +143,11 @@ impl PipelineOptions {
 pub fn process_file(path: &Path, options: &PipelineOptions, drawing: Option<(&DrawOptions, &Path)>) -> SherdRecord {
     let file = path.display().to_string();
     let clock = Instant::now();
-    let mesh = match read_mesh(path) {
-        Ok(mesh) => mesh,
+    let (mesh, report) = match read_mesh_with_report(path) {
+        Ok(read) => read,
         Err(error) => return SherdRecord::failed(file, &error),
     };
+    let options = &options.with_declared_unit(report.declared_unit);
     let read_s = clock.elapsed().as_secs_f64();
     let mut analysis = match analyse(mesh, options) {
         Ok(analysis) => analysis,
