@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::draw::{DrawOptions, Drawing};
 use crate::mesh::decimate::decimate;
-use crate::mesh::io::read_mesh;
+use crate::mesh::io::read_mesh_with_report;
 use crate::mesh::repair::{repair, RepairOptions, RepairReport};
 use crate::mesh::{Mesh, Point};
 use crate::orient::{decimated_copy, orient_automatic_with_decimated, orient_from_three_points, Axis, AxisRecord, ManualOptions, OrientOptions, Orientation, Verdict};
@@ -21,7 +21,8 @@ use crate::{Error, Result};
 /// What to do with a scan.
 #[derive(Clone, Debug, Default)]
 pub struct PipelineOptions {
-    /// Millimetres per scan unit (1 for mm, 10 for cm, 1000 for m).
+    /// Millimetres per scan unit (1 for mm, 10 for cm, 1000 for m); 0 (the default)
+    /// means: the unit the file declares ([`crate::mesh::io::unit_declared_in`]), else mm.
     pub millimetres_per_unit: f64,
     /// Repair before processing.
     pub repair: RepairOptions,
@@ -63,6 +64,8 @@ pub struct Analysis {
     pub measurements: Option<Measurements>,
     /// Seconds spent in each step.
     pub timings: Timings,
+    /// Millimetres per unit of the scan's file (given, or declared by the file).
+    pub millimetres_per_unit: f64,
 }
 
 /// Seconds spent in each step of the pipeline.
@@ -144,7 +147,7 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
         measurements = Some(measure_with_bootstrap_mesh(&mesh, bootstrap_mesh, axis, &options.measure));
         timings.measure_s = clock.elapsed().as_secs_f64();
     }
-    Ok(Analysis { mesh, repair: repair_report, orientation, refinement, measurements, timings })
+    Ok(Analysis { mesh, repair: repair_report, orientation, refinement, measurements, timings, millimetres_per_unit: scale })
 }
 
 impl PipelineOptions {
@@ -152,15 +155,28 @@ impl PipelineOptions {
     pub fn scale(&self) -> f64 {
         if self.millimetres_per_unit > 0.0 { self.millimetres_per_unit } else { 1.0 }
     }
+
+    /// These options for a file that declares `declared` as its unit: an unset unit
+    /// takes the file's; one given explicitly is kept.
+    pub fn with_declared_unit(&self, declared: Option<crate::mesh::io::LengthUnit>) -> Self {
+        let mut options = self.clone();
+        if options.millimetres_per_unit <= 0.0
+            && let Some(millimetres) = declared.and_then(|unit| unit.millimetres())
+        {
+            options.millimetres_per_unit = millimetres;
+        }
+        options
+    }
 }
 
-/// Reads `path` and analyses it; the error says why it could not (the C ABI turns its
+/// Reads `path` and analyses it, in the unit the file declares when `options` give none;
+/// the error says why it could not (the C ABI turns its
 /// kind into a status, [`process_file`] into a record).
 pub fn analyse_file(path: &Path, options: &PipelineOptions) -> Result<Analysis> {
     let clock = Instant::now();
-    let mesh = read_mesh(path)?;
+    let (mesh, report) = read_mesh_with_report(path)?;
     let read_s = clock.elapsed().as_secs_f64();
-    let mut analysis = analyse(mesh, options)?;
+    let mut analysis = analyse(mesh, &options.with_declared_unit(report.declared_unit))?;
     analysis.timings.read_s = read_s;
     Ok(analysis)
 }
@@ -174,7 +190,7 @@ pub fn process_file(path: &Path, options: &PipelineOptions, drawing: Option<(&Dr
         Ok(analysis) => analysis,
         Err(error) => return SherdRecord::failed(file, &error),
     };
-    let mut record = SherdRecord::from_analysis(file, &analysis, options.scale());
+    let mut record = SherdRecord::from_analysis(file, &analysis, analysis.millimetres_per_unit);
     if let (Some((draw_options, output)), true) = (drawing, analysis.is_oriented()) {
         let clock = Instant::now();
         // The measurements just made (with their intervals) label the drawing, rather

@@ -70,7 +70,7 @@ fn orient_json_gives_the_axis_base_to_rim_and_the_rim_radius() {
 }
 
 #[test]
-fn units_option_keeps_the_axis_in_the_file_units_and_reports_millimetres() {
+fn units_from_the_option_or_the_file_keep_the_axis_in_the_file_units_and_report_millimetres() {
     let dir = tempfile::tempdir().unwrap();
     let scans = synth(dir.path(), &["--seed", "13", "--part", "rim", "--faces", "30000"]);
     let in_mm = orient_json(&scans[0], &["--refine", "none"]);
@@ -84,6 +84,22 @@ fn units_option_keeps_the_axis_in_the_file_units_and_reports_millimetres() {
     let along = offset[0] * d_mm[0] + offset[1] * d_mm[1] + offset[2] * d_mm[2];
     let across = (offset.iter().map(|c| c * c).sum::<f64>() - along * along).max(0.0).sqrt();
     assert!(across < 1.0, "the axis moved {across:.2} units across itself when only the units changed");
+
+    // A file that declares its unit in a header comment is read in it without --units,
+    // and --units overrides the file.
+    let declared = dir.path().join("declared_in_cm.ply");
+    let bytes = fs::read(&scans[0]).unwrap();
+    let format_line = b"format binary_little_endian 1.0\n";
+    let at = bytes.windows(format_line.len()).position(|w| w == format_line).unwrap() + format_line.len();
+    fs::write(&declared, [&bytes[..at], b"comment units cm\n", &bytes[at..]].concat()).unwrap();
+    let info = sherd().arg("info").arg(&declared).arg("--json").output().unwrap();
+    let info: Value = serde_json::from_slice(&info.stdout).unwrap();
+    assert_eq!(info["read"]["declared_unit"], "centimetres", "{info:#}");
+    let radius = |json: &Value| json["rim_radius_mm"].as_f64().unwrap();
+    let from_file = orient_json(&declared, &["--refine", "none"]);
+    assert!((radius(&from_file) / r_cm - 1.0).abs() < 1e-6, "{} vs {r_cm}", radius(&from_file));
+    let overridden = orient_json(&declared, &["--refine", "none", "--units", "mm"]);
+    assert!((radius(&overridden) / r_mm - 1.0).abs() < 1e-6, "{} vs {r_mm}", radius(&overridden));
 }
 
 #[test]

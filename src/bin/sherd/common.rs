@@ -63,15 +63,19 @@ pub struct AnalysisArgs {
     /// Skins the refinement uses.
     #[arg(long, value_enum, default_value = "both")]
     pub surface: SurfaceChoice,
-    /// Units of the scan (files rarely say; scanners mostly write millimetres).
-    #[arg(long, value_enum, default_value = "mm")]
-    pub units: Units,
+    /// Units of the scan. Without it, the unit a comment of the file declares ("comment
+    /// units cm" in a PLY header, "# units cm" in an OBJ), else millimetres (what
+    /// scanners mostly write). Given, it overrides the file.
+    #[arg(long, value_enum)]
+    pub units: Option<Units>,
 }
 
 impl AnalysisArgs {
     /// The library's options for these arguments.
     pub fn pipeline_options(&self) -> Result<PipelineOptions, String> {
-        let mut options = PipelineOptions { millimetres_per_unit: self.units.millimetres(), ..Default::default() };
+        // 0: the file's declared unit, else millimetres (see `PipelineOptions`).
+        let millimetres_per_unit = self.units.map_or(0.0, Units::millimetres);
+        let mut options = PipelineOptions { millimetres_per_unit, ..Default::default() };
         if let Some(text) = &self.manual {
             options.manual_points = Some(parse_three_points(text)?);
         }
@@ -243,8 +247,8 @@ impl Oriented {
 /// the pipeline. A sherd the pipeline cannot orient is an error here: drawing or
 /// exporting it along a wrong axis would mislead.
 pub fn analyse_or_read_axis(scan: &Path, axis_file: Option<&Path>, analysis: &AnalysisArgs) -> Result<Oriented, String> {
-    let options = analysis.pipeline_options()?;
-    let mesh = sherd::mesh::io::read_mesh(scan).map_err(|e| e.to_string())?;
+    let (mesh, report) = sherd::mesh::io::read_mesh_with_report(scan).map_err(|e| e.to_string())?;
+    let options = analysis.pipeline_options()?.with_declared_unit(report.declared_unit);
     let millimetres_per_unit = options.scale();
     match axis_file {
         Some(axis_file) => {

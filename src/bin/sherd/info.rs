@@ -115,8 +115,10 @@ fn text(info: &Info) -> String {
         out += &format!("bounds:     {} to {}\n", triple(bounds.min), triple(bounds.max));
         out += &format!("size:       {:.3} x {:.3} x {:.3}\n", bounds.size[0], bounds.size[1], bounds.size[2]);
     }
-    if let Some(units) = &info.units_guess {
-        out += &format!("units:      {} (guess; {})\n", units.unit.symbol(), units.reason);
+    match (info.read.declared_unit, &info.units_guess) {
+        (Some(unit), _) => out += &format!("units:      {} (declared in the file)\n", unit.symbol()),
+        (None, Some(units)) => out += &format!("units:      {} (guess; {})\n", units.unit.symbol(), units.reason),
+        (None, None) => {}
     }
     out += &format!("normals:    {}\n", yes_no(info.has_normals));
     out += &format!("colours:    {}\n", yes_no(info.has_colours));
