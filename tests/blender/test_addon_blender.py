@@ -138,6 +138,35 @@ def stored_measurements_match(obj, vendored, operators):
     return direct, checked
 
 
+class RecordingLayout:
+    """Stands in for a panel's UILayout (a headless Blender draws no UI): records the
+    labels' texts, accepts everything else."""
+
+    def __init__(self, texts=None):
+        self.texts = [] if texts is None else texts
+
+    def label(self, text="", **_):
+        self.texts.append(text)
+
+    def operator(self, *_, **__):
+        return type("OperatorProperties", (), {})()
+
+    def prop(self, *_, **__):
+        pass
+
+    def __getattr__(self, name):  # row, column, box, grid_flow...: a nested layout
+        return lambda *_, **__: RecordingLayout(self.texts)
+
+
+def panel_texts(module):
+    """The texts the Sherd panel shows for the active object."""
+    import importlib
+    panel = importlib.import_module(f"{module}.panel").SHERD_PT_panel
+    layout = RecordingLayout()
+    panel.draw(type("Panel", (), {"layout": layout})(), bpy.context)
+    return layout.texts
+
+
 def check_reconstruction_and_regularity(obj, vendored, operators):
     """Reconstruct and Regularity colours give what the library gives on the object's
     world arrays: the vessel as a new object placed with the sherd (its local z is the
@@ -199,7 +228,14 @@ def test_synthetic_sherd(vendored, operators):
     assert bpy.ops.sherd.orient_automatic() == {'FINISHED'}, operators.REPORTS[-1:]
     found = np.array(obj["sherd_axis_direction"])
     print(f"  automatic: {math.degrees(math.acos(np.clip(found @ true_direction, -1, 1))):.3f} deg from the truth")
+    assert bpy.ops.sherd.refine(criterion="pareto", surface="both") == {'FINISHED'}, operators.REPORTS[-1:]
+    front = np.array(obj["sherd_pareto_front"], dtype=np.float64)
+    assert front.shape[1] == 4 and len(front) == obj["sherd_pareto_point_count"] >= 2, front.shape
+    # Non-dominated: no point is better than another in both costs.
+    assert not ((front[:, None, 2] < front[None, :, 2]) & (front[:, None, 3] < front[None, :, 3])).any()
+    assert "Pareto front" in panel_texts(operators.__name__.rsplit(".", 1)[0])
     assert bpy.ops.sherd.refine(criterion="auto", surface="both") == {'FINISHED'}, operators.REPORTS[-1:]
+    assert len(obj["sherd_pareto_front"]) == 0
     assert bpy.ops.sherd.refine(criterion="circles", surface="outer") == {'FINISHED'}, operators.REPORTS[-1:]
     assert obj["sherd_axis_source"].startswith("refined (circles, outer")
 
@@ -227,6 +263,9 @@ def test_synthetic_sherd(vendored, operators):
         expect_cancelled(operators, lambda: bpy.ops.sherd.draw(filepath=os.path.join(folder, "x.gif")), "sherd")
 
     check_reconstruction_and_regularity(obj, vendored, operators)
+    texts = panel_texts(operators.__name__.rsplit(".", 1)[0])
+    for expected in ("Rim diameter", "95% interval", "Sector", "Height", "Residual", "Blue: inside", "Red: outside"):
+        assert expected in texts, (expected, texts)
 
     assert bpy.ops.sherd.apply_orientation() == {'FINISHED'}
     after = world_axis_direction(obj.matrix_world, truth.direction)
