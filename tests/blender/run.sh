@@ -35,8 +35,10 @@ if [ "${SHERD_SKIP_BPY:-0}" != 1 ]; then
   fi
 fi
 
-# With bpy present the extension zip is built by Blender's own extension tool.
+# With bpy present the extension zip is built by Blender's own extension tool. The test
+# compares the add-on's measurements with the sherd command's.
 BPY_PYTHON=${bpy_python:-none} bash addons/blender/build.sh
+cargo build --release --bin sherd --quiet
 
 blender=${BLENDER:-blender}
 if command -v "$blender" >/dev/null 2>&1; then

@@ -6,8 +6,10 @@ Installs the built zip as a legacy add-on, enables it, and runs every operator t
 bpy.ops on a synthetic sherd with a known axis (and on ../shared/data/dacord/A011.ply when
 present). Any failed assertion exits Blender with status 1."""
 
+import json
 import math
 import os
+import subprocess
 import sys
 import tempfile
 import traceback
@@ -209,6 +211,34 @@ def check_reconstruction_and_regularity(obj, vendored, operators):
         print(f"  regularity {kind}: {direct.value_range[0]:.2f} to {direct.value_range[1]:.2f} mm")
 
 
+def cli_record(vendored, operators, obj, *arguments):
+    """What ``sherd orient --json`` says of the object's world mesh, written to a file."""
+    positions, triangles, _ = operators.world_arrays(obj)
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, f"{obj.name}.ply")
+        vendored.Mesh.from_arrays(positions, triangles).write_ply(path)
+        run = subprocess.run([str(ROOT / "target" / "release" / "sherd"), "orient", path, "--json", *arguments],
+                             capture_output=True, text=True, check=True)
+    return json.loads(run.stdout)
+
+
+def measurements_match_the_cli(obj, record):
+    """The panel's measurements of an automatically oriented object are the command-line
+    tool's (``--refine none``) on the same mesh, up to the rounding of the PLY file the
+    tool reads (single-precision coordinates)."""
+    direction = np.array(record["axis"]["direction"])
+    angle = math.degrees(math.acos(min(1.0, abs(float(direction @ np.array(obj["sherd_axis_direction"]))))))
+    print(f"  the add-on's axis is {angle:.2e} deg from the CLI's")
+    assert angle < 1e-2, f"the add-on's axis is {angle} deg from the CLI's"
+    for field, key in (("rim_diameter_mm", "sherd_rim_diameter_mm"), ("sector_angle_deg", "sherd_sector_angle_deg"),
+                       ("height_mm", "sherd_height_mm"), ("rim_diameter_interval_mm", "sherd_rim_diameter_interval_mm")):
+        if record[field] is None:
+            assert key not in obj, key
+        else:
+            np.testing.assert_allclose(np.array(obj[key], dtype=np.float64), record[field], rtol=1e-3, err_msg=key)
+    print(f"  measurements equal the CLI's: rim diameter {record['rim_diameter_mm']:.2f} mm")
+
+
 def test_synthetic_sherd(vendored, operators):
     clear_scene()
     # A rim piece whose rim-up sense the library finds: the sense is the library's concern
@@ -228,6 +258,8 @@ def test_synthetic_sherd(vendored, operators):
     assert bpy.ops.sherd.orient_automatic() == {'FINISHED'}, operators.REPORTS[-1:]
     found = np.array(obj["sherd_axis_direction"])
     print(f"  automatic: {math.degrees(math.acos(np.clip(found @ true_direction, -1, 1))):.3f} deg from the truth")
+    assert bpy.ops.sherd.measure() == {'FINISHED'}
+    measurements_match_the_cli(obj, cli_record(vendored, operators, obj, "--refine", "none"))
     assert bpy.ops.sherd.refine(criterion="pareto", surface="both") == {'FINISHED'}, operators.REPORTS[-1:]
     front = np.array(obj["sherd_pareto_front"], dtype=np.float64)
     assert front.shape[1] == 4 and len(front) == obj["sherd_pareto_point_count"] >= 2, front.shape
