@@ -1,10 +1,16 @@
-"""The Blender add-on in a real, headless Blender (run by tests/blender/run.sh):
+"""The Blender add-on in a real, headless Blender (run by tests/blender/run.sh), either as
+a script in Blender 3.x:
 
     blender -b --factory-startup --python-exit-code 1 --python tests/blender/test_addon_blender.py
 
-Installs the built zip as a legacy add-on, enables it, and runs every operator through
-bpy.ops on a synthetic sherd with a known axis (and on ../shared/data/dacord/A011.ply when
-present). Any failed assertion exits Blender with status 1."""
+or with pytest where bpy is a Python module (Blender 4.2, pip install bpy):
+
+    python -m pytest tests/blender        (tests/blender/conftest.py installs the add-on)
+
+Installs the built zip (legacy add-on, or extension through Blender's extension
+installer), enables it, and runs every operator through bpy.ops on a synthetic sherd with
+a known axis (and on ../shared/data/dacord/A011.ply when present). As a script, any
+failed assertion exits Blender with status 1."""
 
 import json
 import math
@@ -389,4 +395,5 @@ def main():
     print("all Blender add-on tests passed")
 
 
-main()
+if __name__ == "__main__":
+    main()
