@@ -1038,7 +1038,8 @@ SherdStatus sherd_mesh_repair(SherdMesh *mesh,
 
 /**
  * Creates a decimated copy of `mesh` with about `target_faces` triangles (quadric edge
- * collapse keeping boundaries, topology and interpolated colours); `mesh` is unchanged.
+ * collapse keeping boundaries, topology, interpolated colours and per-corner texture
+ * coordinates, which never cross a texture seam); `mesh` is unchanged.
  * A mesh already at or below the target is copied as it is.
  *
  * # Safety
@@ -1053,8 +1054,8 @@ SherdStatus sherd_mesh_decimate(const SherdMesh *mesh, size_t target_faces, Sher
  * `reference_point` (3 doubles; usually the fragment's centroid) lands on the +x
  * half-plane, where the drawing shows the exterior.
  *
- * Row-major is numpy's and Blender's `Matrix(rows)` layout; OpenGL and VCG hosts take
- * the transpose.
+ * Row-major is numpy's, Blender's `Matrix(rows)` and VCG's `Matrix44` (MeshLab's layer
+ * transform, `m[row][column]`) layout; OpenGL's column-major arrays take the transpose.
  *
  * # Safety
  * `axis` must point to a `SherdAxis` with `size` set; `reference_point` to 3 doubles;
@@ -1176,7 +1177,8 @@ void sherd_orient_options_free(SherdOrientOptions *options);
 SherdStatus sherd_orient_options_set_target_vertex_count(SherdOrientOptions *options, size_t count);
 
 /**
- * Laplacian smoothing iterations of the working copy (default 5; 0 disables).
+ * Laplacian smoothing iterations of the working copy (default 5; 0 disables; at most
+ * 1000).
  *
  * # Safety
  * `options` must be a live handle.
@@ -1263,7 +1265,8 @@ SherdStatus sherd_refine_options_set_criterion(SherdRefineOptions *options, uint
 SherdStatus sherd_refine_options_set_surface(SherdRefineOptions *options, uint32_t surface);
 
 /**
- * Number of horizontal sections; 0 lets the library choose from the sherd's height.
+ * Number of horizontal sections (at most 10000); 0 lets the library choose from the
+ * sherd's height.
  *
  * # Safety
  * `options` must be a live handle.
@@ -1309,8 +1312,8 @@ SherdStatus sherd_measure_options_set_refine_options(SherdMeasureOptions *option
                                                      const SherdRefineOptions *refine_options);
 
 /**
- * Number of bootstrap resamples behind the intervals; 0 gives no intervals (NaN), and
- * so do fewer than 5 usable resamples.
+ * Number of bootstrap resamples behind the intervals (at most 10000); 0 gives no
+ * intervals (NaN), and so do fewer than 5 usable resamples.
  *
  * # Safety
  * `options` must be a live handle.

@@ -130,7 +130,7 @@ fn export_writes_the_oriented_model_the_reconstruction_and_the_profile() {
     fs::write(&axis_file, serde_json::to_vec(&json).unwrap()).unwrap();
     let (oriented, vessel, profile) =
         (dir.path().join("o.ply"), dir.path().join("v.ply"), dir.path().join("p.csv"));
-    sherd()
+    let output = sherd()
         .arg("export")
         .arg(&scans[0])
         .arg("--axis")
@@ -141,8 +141,14 @@ fn export_writes_the_oriented_model_the_reconstruction_and_the_profile() {
         .arg(&vessel)
         .arg("--profile")
         .arg(&profile)
+        .arg("--json")
         .assert()
         .success();
+    let exported: Value = serde_json::from_slice(&output.get_output().stdout).expect("export --json prints one JSON object");
+    assert_eq!(exported["axis"], json["axis"], "the axis read from the file: {exported:#}");
+    assert_eq!(exported["axis_file"], axis_file.display().to_string());
+    let written: Vec<&str> = exported["written"].as_array().unwrap().iter().map(|p| p.as_str().unwrap()).collect();
+    assert_eq!(written, [&oriented, &vessel, &profile].map(|p| p.to_str().unwrap()));
     let info = |path: &Path| -> Value {
         let output = sherd().arg("info").arg(path).arg("--json").output().unwrap();
         assert!(output.status.success());
@@ -229,10 +235,44 @@ fn batch_reports_every_sherd_keeps_going_past_a_broken_file_and_resumes() {
 
 #[test]
 fn help_teaches_by_example() {
-    for command in ["orient", "draw", "export", "batch", "demo"] {
+    for command in ["info", "synth", "orient", "draw", "export", "batch", "demo"] {
         let output = sherd().arg(command).arg("--help").output().unwrap();
         assert!(output.status.success());
         let text = String::from_utf8_lossy(&output.stdout);
         assert!(text.contains("Examples:") && text.contains(&format!("sherd {command}")), "{command}: {text}");
     }
+}
+
+#[test]
+fn draw_json_gives_the_orientation_the_measurements_and_the_drawing() {
+    let dir = tempfile::tempdir().unwrap();
+    let scans = synth(dir.path(), &["--seed", "13", "--part", "rim", "--faces", "30000"]);
+    let drawing = dir.path().join("sherd.svg");
+    let output = sherd().arg("draw").arg(&scans[0]).arg("-o").arg(&drawing).arg("--json").output().unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let json: Value = serde_json::from_slice(&output.stdout).expect("draw --json prints one JSON object");
+    assert_eq!(json["status"], "ok", "{json:#}");
+    let truth = truth_of(&scans[0]);
+    assert!(angle_deg(vector(&json["axis"]["direction"]), vector(&truth["axis"]["direction"])) < 2.0, "{json:#}");
+    assert!(json["rim_radius_mm"].as_f64().is_some() && json["axis_file"].is_null(), "{json:#}");
+    assert_eq!(json["drawing"], drawing.display().to_string());
+    assert_eq!(json["written"][0], drawing.display().to_string());
+    assert!(fs::read_to_string(&drawing).unwrap().contains("<svg"));
+}
+
+#[test]
+fn demo_json_compares_what_was_found_with_the_truth() {
+    let dir = tempfile::tempdir().unwrap();
+    let output = sherd().args(["demo", "--faces", "30000", "--json", "-o"]).arg(dir.path()).output().unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let json: Value = serde_json::from_slice(&output.stdout).expect("demo --json prints only one JSON object");
+    assert_eq!(json["found"]["status"], "ok", "{json:#}");
+    assert_eq!(json["truth"]["part"], "rim", "{json:#}");
+    let error = json["axis_error_deg"].as_f64().unwrap();
+    let measured = angle_deg(vector(&json["found"]["axis"]["direction"]), vector(&json["truth"]["axis"]["direction"]));
+    assert!((error - measured).abs() < 1e-6 && error < 2.0, "{error} vs {measured}");
+    for path in json["written"].as_array().unwrap() {
+        assert!(Path::new(path.as_str().unwrap()).is_file(), "{path} was not written");
+    }
+    assert!(dir.path().join("demo.png").is_file() && dir.path().join("demo.svg").is_file());
 }

@@ -476,7 +476,8 @@ pub unsafe extern "C" fn sherd_mesh_repair(
 }
 
 /// Creates a decimated copy of `mesh` with about `target_faces` triangles (quadric edge
-/// collapse keeping boundaries, topology and interpolated colours); `mesh` is unchanged.
+/// collapse keeping boundaries, topology, interpolated colours and per-corner texture
+/// coordinates, which never cross a texture seam); `mesh` is unchanged.
 /// A mesh already at or below the target is copied as it is.
 ///
 /// # Safety

@@ -96,6 +96,16 @@ fn fraction(value: f64, name: &str) -> FfiResult<f64> {
     }
 }
 
+/// `value` when it is at most `maximum`: counts that set iterations or sizes are bounded,
+/// so that no option value makes an operation run for ever or exhaust memory.
+fn at_most(value: usize, maximum: usize, name: &str) -> FfiResult<usize> {
+    if value <= maximum {
+        Ok(value)
+    } else {
+        Err(Failure::invalid(format!("`{name}` must be at most {maximum}, got {value}")))
+    }
+}
+
 fn positive_count(value: usize, name: &str) -> FfiResult<usize> {
     if value > 0 { Ok(value) } else { Err(Failure::invalid(format!("`{name}` must be at least 1"))) }
 }
@@ -201,13 +211,16 @@ pub unsafe extern "C" fn sherd_orient_options_set_target_vertex_count(options: *
     })
 }
 
-/// Laplacian smoothing iterations of the working copy (default 5; 0 disables).
+/// Laplacian smoothing iterations of the working copy (default 5; 0 disables; at most
+/// 1000).
 ///
 /// # Safety
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_orient_options_set_smoothing_iterations(options: *mut SherdOrientOptions, iterations: usize) -> SherdStatus {
-    assign("sherd_orient_options_set_smoothing_iterations", options, |o| &mut o.smoothing_iterations, || Ok(iterations))
+    assign("sherd_orient_options_set_smoothing_iterations", options, |o| &mut o.smoothing_iterations, || {
+        at_most(iterations, crate::orient::MAX_SMOOTHING_ITERATIONS, "iterations")
+    })
 }
 
 /// Confidence of the opposite-normal test that separates the inner and outer surfaces
@@ -322,13 +335,15 @@ pub unsafe extern "C" fn sherd_refine_options_set_surface(options: *mut SherdRef
     assign("sherd_refine_options_set_surface", options, |o| &mut o.surface, || SherdSurface::parse(surface))
 }
 
-/// Number of horizontal sections; 0 lets the library choose from the sherd's height.
+/// Number of horizontal sections (at most 10000); 0 lets the library choose from the
+/// sherd's height.
 ///
 /// # Safety
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_refine_options_set_section_count(options: *mut SherdRefineOptions, section_count: usize) -> SherdStatus {
     assign("sherd_refine_options_set_section_count", options, |o| &mut o.section_count, || {
+        let section_count = at_most(section_count, crate::refine::MAX_SECTION_COUNT, "section_count")?;
         Ok((section_count > 0).then_some(section_count))
     })
 }
@@ -391,14 +406,16 @@ pub unsafe extern "C" fn sherd_measure_options_set_refine_options(
     })
 }
 
-/// Number of bootstrap resamples behind the intervals; 0 gives no intervals (NaN), and
-/// so do fewer than 5 usable resamples.
+/// Number of bootstrap resamples behind the intervals (at most 10000); 0 gives no
+/// intervals (NaN), and so do fewer than 5 usable resamples.
 ///
 /// # Safety
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_measure_options_set_bootstrap_samples(options: *mut SherdMeasureOptions, samples: usize) -> SherdStatus {
-    assign("sherd_measure_options_set_bootstrap_samples", options, |o| &mut o.bootstrap.samples, || Ok(samples))
+    assign("sherd_measure_options_set_bootstrap_samples", options, |o| &mut o.bootstrap.samples, || {
+        at_most(samples, crate::refine::uncertainty::MAX_BOOTSTRAP_SAMPLES, "samples")
+    })
 }
 
 /// Seed of the bootstrap's resampling (the same seed gives the same intervals).

@@ -89,13 +89,7 @@ def oriented_rim(rim_sherd):
     return mesh, truth, sherd.orient_automatic(mesh).axis
 
 
-PROFILE_DEFECT = pytest.mark.xfail(
-    strict=True,
-    reason="known defect (issue 4): the profile criterion moves this well-oriented rim from 0.4 to 6 deg; "
-    "its own cost prefers the wrong axis on deformed sherds")
-
-
-@pytest.mark.parametrize("criterion", ["circles", "pareto", pytest.param("profile", marks=PROFILE_DEFECT), "tangent", "auto"])
+@pytest.mark.parametrize("criterion", ["circles", "pareto", "profile", "tangent", "auto"])
 def test_refine_with_each_criterion(oriented_rim, criterion):
     mesh, truth, start = oriented_rim
     refinement = sherd.refine(mesh, start, criterion=criterion, surface="both")

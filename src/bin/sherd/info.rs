@@ -9,6 +9,12 @@ use sherd::mesh::repair::{RepairOptions, RepairReport, repair};
 
 /// Arguments of `sherd info`.
 #[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  sherd info A011.ply\n  sherd info scan.obj --json | jq .repair\n  sherd info scan.ply --merge-tolerance-mm 0.01 --keep-largest-component\n\n\
+The scan is described as read (counts, bounding box, units guess, normals, colours,\n\
+texture), then repaired as every processing command repairs it, and what repair\n\
+changed is listed. A file that cannot be read exits with 1 and says where it broke."
+)]
 pub struct InfoArgs {
     /// The scan: .ply, .obj, .stl, .xyz or .pts.
     pub scan: PathBuf,

@@ -28,7 +28,7 @@ struct Cli {
 enum Command {
     /// Describe a scan: counts, bounding box, units guess, attributes, what repair did.
     Info(info::InfoArgs),
-    /// Write synthetic sherds with known axes (NAME.ply + NAME.truth.json).
+    /// Break a synthetic vessel into 20-40 sherds with known axes (NAME.ply + NAME.truth.json).
     Synth(synth::SynthArgs),
     /// Find the rotation axis, rim/base diameter and preserved sector of a sherd.
     Orient(orient::OrientArgs),
