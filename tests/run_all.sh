@@ -14,7 +14,7 @@ root=$(pwd)
 step() { printf '\n==> %s\n' "$*"; }
 
 step "system packages"
-packages=(ghostscript valgrind libgl1 libglu1-mesa pkg-config blender python3-numpy)
+packages=(ghostscript valgrind libgl1 libglu1-mesa pkg-config blender python3-numpy python3-venv)
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then
