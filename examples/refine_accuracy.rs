@@ -80,7 +80,21 @@ fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
         };
         let start = perturbed(&truth.axis, seed);
         match refine(&sherd.mesh, &start, &RefineOptions { criterion, ..Default::default() }) {
-            Ok(r) => (r.axis, false, format!("{:?}", r.report.method)),
+            Ok(r) => {
+                if std::env::var_os("REFINE_ACCURACY_DUMP").is_some() {
+                    use sherd::refine::objective::Objective;
+                    let surface = sherd::refine::sections::PreparedSurface::new(&sherd.mesh, &start, sherd::refine::Surface::Both, None).unwrap();
+                    let circles = sherd::refine::circles::CirclesObjective::new(&surface);
+                    let at = |a: &Axis| circles.value(&surface.parameters_of(a)).sqrt();
+                    eprintln!(
+                        "DUMP {seed} {:?} {:?} angle {:.2} dist {:.2} tilt {:.2} shift {:.2} res {:.4}/{:.4} circles start {:.4} result {:.4} truth {:.4} sector {:.0}",
+                        truth.part, r.report.method, r.axis.line_angle_to_deg(&truth.axis),
+                        mean_point_distance_mm(&sherd.mesh.positions, &r.axis, &truth.axis), r.report.tilt_deg, r.report.shift_mm,
+                        r.report.start_residual_mm, r.report.residual_mm, at(&start), at(&r.axis), at(&truth.axis), truth.sector_angle_deg
+                    );
+                }
+                (r.axis, false, format!("{:?}", r.report.method))
+            }
             Err(_) => (start, true, "refine failed".into()),
         }
     };

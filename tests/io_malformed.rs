@@ -1,11 +1,43 @@
 //! The malformed-file corpus (`tests/malformed/`, written by its `generate.py`): every
-//! file is refused with a message naming the file and containing the expected text (or,
-//! for a missing texture or material library, read with that warning), and none panics.
+//! file is refused with a message naming the file and containing the expected text, or
+//! (a missing texture or material library) read with that warning, or (degenerate,
+//! non-manifold, duplicated geometry) read and repaired as its table says; none panics.
 
 use std::collections::BTreeSet;
 use std::path::Path;
 
-use sherd::mesh::io::read_mesh_with_report;
+use sherd::mesh::io::{ReadReport, read_mesh_with_report};
+use sherd::mesh::Mesh;
+use sherd::mesh::repair::{RepairOptions, repair};
+use sherd::orient::{OrientOptions, orient_automatic};
+
+/// What is wrong with a "repair" case, if anything: the mesh read is repaired with the
+/// default options, the fields named in `expected` ("field=value; ..." over the read and
+/// the repair report, values as JSON or plain strings) must have those values, and the
+/// automatic orientation of the repaired mesh must answer (an error is an answer) without
+/// panicking.
+fn check_repair(mut mesh: Mesh, read: &ReadReport, expected: &str) -> Option<String> {
+    let report = repair(&mut mesh, &RepairOptions::default());
+    if let Err(error) = mesh.validate() {
+        return Some(format!("repair left an invalid mesh: {error}"));
+    }
+    let mut fields = serde_json::to_value(read).unwrap();
+    let serde_json::Value::Object(repair_fields) = serde_json::to_value(&report).unwrap() else { unreachable!() };
+    fields.as_object_mut().unwrap().extend(repair_fields);
+    let mut wrong = Vec::new();
+    for pair in expected.split("; ") {
+        let (field, value) = pair.split_once('=').unwrap_or_else(|| panic!("{pair:?} is not field=value"));
+        let value = serde_json::from_str(value).unwrap_or_else(|_| serde_json::Value::String(value.to_string()));
+        match fields.get(field) {
+            Some(actual) if *actual == value => {}
+            actual => wrong.push(format!("{field} is {actual:?}, expected {value}")),
+        }
+    }
+    if std::panic::catch_unwind(|| orient_automatic(&mesh, &OrientOptions::default())).is_err() {
+        wrong.push("the orientation of the repaired mesh PANICKED".into());
+    }
+    (!wrong.is_empty()).then(|| wrong.join("; "))
+}
 
 #[test]
 fn every_malformed_file_gives_its_expected_error_and_none_panics() {
@@ -13,11 +45,15 @@ fn every_malformed_file_gives_its_expected_error_and_none_panics() {
     let table = std::fs::read_to_string(folder.join("expected.tsv")).expect("tests/malformed/expected.tsv");
     let mut listed = BTreeSet::new();
     let mut errors = 0;
+    let mut repaired = 0;
     let mut failures = Vec::new();
     for line in table.lines().filter(|l| !l.starts_with('#') && !l.trim().is_empty()) {
         let fields: Vec<&str> = line.split('\t').collect();
         let [file, kind, expected] = fields[..] else { panic!("malformed table line {line:?}") };
         listed.insert(file.to_string());
+        if kind == "aux" {
+            continue;
+        }
         let path = folder.join(file);
         let outcome = std::panic::catch_unwind(|| read_mesh_with_report(&path));
         let problem = match (kind, outcome) {
@@ -32,6 +68,11 @@ fn every_malformed_file_gives_its_expected_error_and_none_panics() {
                 (!report.warnings.iter().any(|w| w.contains(expected))).then(|| format!("warnings {:?} lack {expected:?}", report.warnings))
             }
             ("warning", Ok(Err(error))) => Some(format!("expected a warning, got the error {error}")),
+            ("repair", Ok(Ok((mesh, report)))) => {
+                repaired += 1;
+                check_repair(mesh, &report, expected)
+            }
+            ("repair", Ok(Err(error))) => Some(format!("expected a repairable mesh, got the error {error}")),
             (other, _) => Some(format!("unknown kind {other:?}")),
         };
         if let Some(problem) = problem {
@@ -40,12 +81,13 @@ fn every_malformed_file_gives_its_expected_error_and_none_panics() {
     }
     assert!(failures.is_empty(), "{} of {} files wrong:\n{}", failures.len(), listed.len(), failures.join("\n"));
     assert!(errors >= 50, "only {errors} malformed files expect an error");
-    // Every file of the folder is in the table (except the generator, the table and
-    // auxiliary files such as a .mtl a listed .obj refers to).
+    assert!(repaired >= 15, "only {repaired} broken meshes expect a repair");
+    // Every file of the folder is in the table (auxiliary files such as the .mtl a listed
+    // .obj refers to as "aux"), except the generator and the table.
     for entry in std::fs::read_dir(&folder).unwrap() {
         let name = entry.unwrap().file_name().to_string_lossy().into_owned();
-        let auxiliary = name.ends_with(".mtl") || name == "generate.py" || name == "expected.tsv";
-        assert!(auxiliary || listed.contains(&name), "{name} is in tests/malformed but not in expected.tsv");
+        let own = name == "generate.py" || name == "expected.tsv";
+        assert!(own || listed.contains(&name), "{name} is in tests/malformed but not in expected.tsv");
     }
 }
 
@@ -112,4 +154,20 @@ fn truncated_and_corrupted_files_never_panic() {
         }
     }
     assert!(attempts > 3000, "{attempts}");
+}
+
+/// A scan whose file name is not UTF-8 (Linux allows any bytes but `/` and NUL) is read,
+/// and an error about such a file names it (lossily) instead of failing on the name.
+#[test]
+fn non_utf8_file_names_are_read_and_named() {
+    use std::os::unix::ffi::OsStrExt;
+    let dir = tempfile::tempdir().unwrap();
+    let good = dir.path().join(std::ffi::OsStr::from_bytes(b"tesson caf\xe9 \xff.ply"));
+    std::fs::write(&good, b"ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n").unwrap();
+    let (mesh, _) = read_mesh_with_report(&good).expect("a valid PLY under a non-UTF-8 name");
+    assert_eq!(mesh.triangles.len(), 1);
+    let bad = dir.path().join(std::ffi::OsStr::from_bytes(b"bris\xe9.obj"));
+    std::fs::write(&bad, b"v 0 0 0\nf 1 2 3\n").unwrap();
+    let message = read_mesh_with_report(&bad).unwrap_err().to_string();
+    assert!(message.contains("bris\u{fffd}.obj") && message.contains("out of range"), "{message}");
 }

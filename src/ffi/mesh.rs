@@ -297,7 +297,7 @@ pub unsafe extern "C" fn sherd_mesh_attributes(mesh: *const SherdMesh, out_attri
 }
 
 /// Copies `items` (each `N` scalars) into the host's array of `capacity` items.
-fn copy_out<T: Copy, const N: usize>(items: &[[T; N]], out: *mut T, capacity: usize, what: &str) -> FfiResult {
+pub(crate) fn copy_out<T: Copy, const N: usize>(items: &[[T; N]], out: *mut T, capacity: usize, what: &str) -> FfiResult {
     if capacity < items.len() {
         return Err(Failure::new(
             SherdStatus::BufferTooSmall,

@@ -76,6 +76,12 @@ pub unsafe extern "C" fn sherd_synthetic_sherd(
             return Err(Failure::invalid(format!("`noise_mm` must be finite and at least 0, got {noise_mm}")));
         }
         options.noise_mm = noise_mm;
+        if target_faces > crate::synth::MAX_TARGET_FACES {
+            return Err(Failure::invalid(format!(
+                "`target_faces` must be at most {}, got {target_faces}",
+                crate::synth::MAX_TARGET_FACES
+            )));
+        }
         if target_faces > 0 {
             options.target_faces = target_faces;
         }

@@ -15,13 +15,19 @@ use crate::{Error, Result};
 /// a base crossing the axis stays watertight instead of making a fan of slivers.
 const POLE_RADIUS_MM: f64 = 1e-6;
 
+/// Most steps per turn of a revolution: 0.01 degree each. More only multiplies the
+/// vertices (and a hostile count would exhaust memory).
+pub const MAX_REVOLUTION_SEGMENTS: usize = 36_000;
+
 /// Revolves every closed outline of `section` ([`ProfileSection::closed_outlines`]) about
 /// the z axis with `segments` steps per turn. The result is in the oriented frame (axis
 /// on z, rim up), watertight, with outward-facing triangles. Errors when the section has
-/// no closed outline with area, or `segments < 3`.
+/// no closed outline with area, or `segments` is outside 3 to [`MAX_REVOLUTION_SEGMENTS`].
 pub fn revolve_profile(section: &ProfileSection, segments: usize) -> Result<Mesh> {
-    if segments < 3 {
-        return Err(Error::InvalidArgument(format!("revolution needs at least 3 segments, got {segments}")));
+    if !(3..=MAX_REVOLUTION_SEGMENTS).contains(&segments) {
+        return Err(Error::InvalidArgument(format!(
+            "revolution needs 3 to {MAX_REVOLUTION_SEGMENTS} segments, got {segments}"
+        )));
     }
     let outlines: Vec<Vec<[f64; 2]>> =
         section.closed_outlines().into_iter().filter(|o| polygon_signed_area(o).abs() > 1e-9).collect();

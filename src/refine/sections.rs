@@ -213,6 +213,19 @@ fn skins_by_smooth_regions(mesh: &Mesh, points: &[Point]) -> Vec<Option<Skin>> {
             (b - a).cross(&(c - a))
         })
         .collect();
+    // A region never crosses a face that is neither skin by its own normal (a rounded
+    // rim, a horizontal break): at fine resolution a rounded lip turns so gradually that
+    // neighbouring faces differ by a degree or two, and the inner and outer skins would
+    // join through it into one region whose radial normals cancel out.
+    let face_skins: Vec<Option<Skin>> = mesh
+        .triangles
+        .iter()
+        .zip(&face_normals)
+        .map(|(t, n)| {
+            let centre = Point::from(t.iter().map(|&v| points[v as usize].coords).sum::<Vector>() / 3.0);
+            skin_by_normal(&centre, &n.try_normalize(1e-300)?)
+        })
+        .collect();
     let mut parent: Vec<usize> = (0..mesh.triangles.len()).collect();
     fn root(parent: &mut [usize], mut i: usize) -> usize {
         while parent[i] != i {
@@ -230,7 +243,8 @@ fn skins_by_smooth_regions(mesh: &Mesh, points: &[Point]) -> Vec<Option<Skin>> {
             if let Some(&other) = edges.get(&key) {
                 let (n, m) = (face_normals[face], face_normals[other]);
                 let norms = n.norm() * m.norm();
-                if norms > 0.0 && n.dot(&m) >= cosine_limit * norms {
+                let same_skin = face_skins[face].is_some() && face_skins[face] == face_skins[other];
+                if same_skin && norms > 0.0 && n.dot(&m) >= cosine_limit * norms {
                     let (ra, rb) = (root(&mut parent, face), root(&mut parent, other));
                     parent[ra] = rb;
                 }

@@ -166,6 +166,10 @@ const PROFILE_STEP_MM: f64 = 0.5;
 /// Cells of margin around a fragment's coarse extent when meshing it finely.
 const WINDOW_MARGIN_CELLS: f64 = 3.0;
 
+/// Most triangles a synthetic sherd may be asked for: ten times a large real scan. The
+/// command line and the C ABI refuse more, and the mesher never plans more.
+pub const MAX_TARGET_FACES: usize = 10_000_000;
+
 /// One synthetic sherd for `seed` (deterministic: the same seed and options give the
 /// same mesh, whatever the number of threads).
 pub fn synthetic_sherd(seed: u64, options: &SherdOptions) -> SynthSherd {
@@ -387,7 +391,7 @@ fn mesh_planned_fragment(profile: &VesselProfile, deformation: &Deformation, vor
     let extent = CellSetExtent::measure(&coarse, &mask, profile);
 
     // Faces ~ 4 per cell + 2 per boundary edge: 4 A / h^2 + 2 P / h = target, solved for 1/h.
-    let target = target_faces.max(64) as f64;
+    let target = target_faces.clamp(64, MAX_TARGET_FACES) as f64;
     let (a, p) = (extent.area_mm2, extent.perimeter_mm);
     let inverse_cell = (-2.0 * p + (4.0 * p * p + 16.0 * a * target).sqrt()) / (8.0 * a);
     let cell = 1.0 / inverse_cell;

@@ -19,13 +19,16 @@ import numpy as np
 from mathutils import Matrix
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tests" / "support"))
+from rim_points import pick_rim_vertices  # noqa: E402 - the path is set just above
 ZIP = Path(os.environ.get("SHERD_BLENDER_ZIP", ROOT / "target" / "blender" / "sherd_blender.zip"))
 REAL_SCAN = ROOT.parent / "shared" / "data" / "dacord" / "A011.ply"
 
 
 def install_addon():
     """Blender 4.2+ (e.g. the bpy wheel): the extension zip with Blender's extension
-    installer; Blender 3.x: the legacy add-on zip."""
+    installer, which installs the sherd wheel inside it; Blender 3.x: the legacy add-on
+    zip with the package vendored. Returns the sherd package the add-on uses."""
     import importlib
     if bpy.app.version >= (4, 2, 0):
         package = Path(os.environ.get("SHERD_EXTENSION_ZIP", ZIP.parent / "sherd_extension.zip"))
@@ -33,18 +36,23 @@ def install_addon():
         assert bpy.ops.extensions.package_install_files(
             filepath=str(package), repo="user_default", enable_on_install=True) == {'FINISHED'}
         module = "bl_ext.user_default.sherd"
+        # The extension's wheel, installed into Blender's own site-packages for extensions.
+        vendored = importlib.import_module("sherd")
+        home = Path(bpy.utils.user_resource('EXTENSIONS')).resolve()
     else:
         assert ZIP.is_file(), f"{ZIP} is missing: run addons/blender/build.sh"
         assert bpy.ops.preferences.addon_install(filepath=str(ZIP), overwrite=True) == {'FINISHED'}
         assert bpy.ops.preferences.addon_enable(module="sherd_blender") == {'FINISHED'}
         module = "sherd_blender"
-    addon = importlib.import_module(module)
+        vendored = importlib.import_module(f"{module}.sherd")
+        home = Path(importlib.import_module(module).__file__).resolve().parent
     operators = importlib.import_module(f"{module}.operators")
-    vendored = importlib.import_module(f"{module}.sherd")
+    assert importlib.import_module(f"{module}.library").sherd() is vendored
     # The bundled library, not one found elsewhere (run.sh unsets SHERD_LIBRARY).
-    assert Path(vendored.__file__).parent.parent == Path(addon.__file__).parent
-    assert (Path(vendored.__file__).parent / "libsherd.so").is_file()
-    print(f"Blender {bpy.app.version_string}: {module} enabled")
+    library = Path(vendored.lib._name).resolve()
+    assert library == Path(vendored.__file__).resolve().parent / "libsherd.so", library
+    assert home in library.parents, f"{library} is not inside {home}"
+    print(f"Blender {bpy.app.version_string}: {module} enabled, library {library}")
     return vendored, operators
 
 
@@ -130,6 +138,48 @@ def stored_measurements_match(obj, vendored, operators):
     return direct, checked
 
 
+def check_reconstruction_and_regularity(obj, vendored, operators):
+    """Reconstruct and Regularity colours give what the library gives on the object's
+    world arrays: the vessel as a new object placed with the sherd (its local z is the
+    stored axis), the maps as colour and value attributes."""
+    positions, triangles, _ = operators.world_arrays(obj)
+    direct_mesh = vendored.Mesh.from_arrays(positions, triangles)
+    axis = vendored.Axis(list(obj["sherd_axis_point"]), list(obj["sherd_axis_direction"]))
+
+    assert bpy.ops.sherd.reconstruct(segments=48) == {'FINISHED'}, operators.REPORTS[-1:]
+    vessel = bpy.data.objects[obj["sherd_reconstruction"]]
+    expected = vendored.reconstruct(direct_mesh, axis, segments=48)
+    local = np.empty(len(vessel.data.vertices) * 3, dtype=np.float32)
+    vessel.data.vertices.foreach_get("co", local)
+    np.testing.assert_allclose(local.reshape(-1, 3), expected.positions, atol=1e-3)
+    assert len(vessel.data.polygons) == expected.face_count
+    world = np.array(vessel.matrix_world, dtype=np.float64)
+    np.testing.assert_allclose(world[:3, 2], axis.direction, atol=1e-6)
+    # Placed with the sherd: the widest ring of the vessel is as far from the stored axis
+    # (in world coordinates) as the sherd's farthest vertex.
+    placed = local.reshape(-1, 3).astype(np.float64) @ world[:3, :3].T + world[:3, 3]
+    def radii(points):
+        offset = points - axis.point
+        return np.linalg.norm(offset - np.outer(offset @ axis.direction, axis.direction), axis=1)
+    assert abs(radii(placed).max() / radii(positions).max() - 1) < 0.01
+    print(f"  reconstruction: {len(vessel.data.vertices)} vertices, placed with the sherd")
+    activate(obj)
+
+    for kind in ("axis_distance", "ideal_vessel"):
+        assert bpy.ops.sherd.regularity(kind=kind) == {'FINISHED'}, operators.REPORTS[-1:]
+        direct = vendored.regularity(direct_mesh, axis, kind)
+        colors = obj.data.color_attributes[operators.REGULARITY_COLORS]
+        assert obj.data.color_attributes.active_color.name == colors.name
+        srgb = np.empty(len(obj.data.vertices) * 4, dtype=np.float32)
+        colors.data.foreach_get("color_srgb", srgb)
+        np.testing.assert_array_equal(np.rint(srgb.reshape(-1, 4) * 255).astype(np.uint8), direct.colors)
+        values = np.empty(len(obj.data.vertices), dtype=np.float32)
+        obj.data.attributes[operators.REGULARITY_VALUES].data.foreach_get("value", values)
+        np.testing.assert_array_equal(values, direct.values)
+        np.testing.assert_allclose(obj["sherd_regularity_range_mm"], direct.value_range)
+        print(f"  regularity {kind}: {direct.value_range[0]:.2f} to {direct.value_range[1]:.2f} mm")
+
+
 def test_synthetic_sherd(vendored, operators):
     clear_scene()
     # A rim piece whose rim-up sense the library finds: the sense is the library's concern
@@ -176,6 +226,8 @@ def test_synthetic_sherd(vendored, operators):
         expect_cancelled(operators, lambda: bpy.ops.sherd.draw(filepath=svg, style=set()), "at least one")
         expect_cancelled(operators, lambda: bpy.ops.sherd.draw(filepath=os.path.join(folder, "x.gif")), "sherd")
 
+    check_reconstruction_and_regularity(obj, vendored, operators)
+
     assert bpy.ops.sherd.apply_orientation() == {'FINISHED'}
     after = world_axis_direction(obj.matrix_world, truth.direction)
     error_deg = angle_to_z_deg(after)
@@ -192,14 +244,7 @@ def test_synthetic_sherd(vendored, operators):
     # The manual method: three rim vertices picked as a user would, then 2 (refused).
     clear_scene()
     obj = add_mesh_object("manual", mesh.positions, mesh.triangles)
-    matrix = mesh.oriented_transform(truth)
-    oriented = mesh.positions @ matrix[:3, :3].T + matrix[:3, 3]
-    angles = np.arctan2(oriented[:, 1], oriented[:, 0])
-    share = 3 * (angles - angles.min()) / (angles.max() - angles.min())
-    picked = []
-    for third in range(3):
-        candidates = np.flatnonzero(np.abs(share - third - 0.5) < 0.3)
-        picked.append(int(candidates[np.argmax(oriented[candidates, 2])]))
+    picked = pick_rim_vertices(mesh.positions, mesh.oriented_transform(truth))
     select_vertices(obj, picked)
     bpy.ops.object.mode_set(mode='EDIT')
     assert bpy.ops.sherd.orient_three_points() == {'FINISHED'}, operators.REPORTS[-1:]
@@ -221,12 +266,14 @@ def test_bad_input(vendored, operators):
     bpy.context.collection.objects.link(empty_object)
     activate(empty_object)
     for call in (bpy.ops.sherd.orient_automatic, bpy.ops.sherd.orient_three_points, bpy.ops.sherd.refine,
-                 bpy.ops.sherd.measure, bpy.ops.sherd.apply_orientation, bpy.ops.sherd.add_axis_empty):
+                 bpy.ops.sherd.measure, bpy.ops.sherd.apply_orientation, bpy.ops.sherd.add_axis_empty,
+                 bpy.ops.sherd.reconstruct, bpy.ops.sherd.regularity):
         expect_cancelled(operators, call, "not a mesh")
     add_mesh_object("empty mesh", [], [])
     for call in (bpy.ops.sherd.orient_automatic, bpy.ops.sherd.orient_three_points):
         expect_cancelled(operators, call, "no vertices")
-    expect_cancelled(operators, bpy.ops.sherd.measure, "orient it first")
+    for call in (bpy.ops.sherd.measure, bpy.ops.sherd.reconstruct, bpy.ops.sherd.regularity):
+        expect_cancelled(operators, call, "orient it first")
     # A mesh the library rejects: its error arrives as a report.
     add_mesh_object("degenerate", [(0, 0, 0), (1, 0, 0), (2, 0, 0)], [(0, 1, 2)])
     expect_cancelled(operators, bpy.ops.sherd.orient_automatic, "sherd")
@@ -249,6 +296,7 @@ def test_real_scan(vendored, operators):
     assert abs(np.array(obj["sherd_axis_direction"]) @ direct.axis.direction) > math.cos(math.radians(0.5))
     assert bpy.ops.sherd.measure() == {'FINISHED'}
     stored_measurements_match(obj, vendored, operators)
+    check_reconstruction_and_regularity(obj, vendored, operators)
     assert bpy.ops.sherd.apply_orientation() == {'FINISHED'}
     print(f"  A011: oriented, rim diameter {obj.get('sherd_rim_diameter_mm', float('nan')):.1f} mm")
 

@@ -3,11 +3,17 @@
 
 Each case is (file name, kind, expected substring, content): kind "error" means reading
 must fail with a message containing the file name and the substring; kind "warning" means
-reading succeeds with a warning containing the substring. tests/io_malformed.rs reads the
-table; run this script again after changing a case:  python3 tests/malformed/generate.py
+reading succeeds with a warning containing the substring; kind "repair" means reading
+succeeds and, after repair with the default options, the read and repair reports have
+the listed field=value pairs (the mesh is then given to the automatic orientation, which
+must answer, error or not, without panicking; values are JSON, or plain strings, and pairs
+are separated by "; "); kind "aux" is a file another case refers to. tests/io_malformed.rs
+reads the table; run this script again after changing a case:
+python3 tests/malformed/generate.py
 """
 import os
 import struct
+import zlib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -34,6 +40,26 @@ def le_face(*indices):
 
 TRIANGLE_VERTICES = le_floats(0, 0, 0, 1, 0, 0, 0, 1, 0)
 ASCII_TRIANGLE = b"0 0 0\n1 0 0\n0 1 0\n"
+
+# A closed tetrahedron, outward faces, in the forms the cases need.
+TETRA_POINTS = [(0, 0, 0), (10, 0, 0), (0, 10, 0), (0, 0, 10)]
+TETRA_FACE_LIST = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]
+TETRA_ASCII = b"".join(b"%d %d %d\n" % p for p in TETRA_POINTS)
+TETRA_FACES_ASCII = b"".join(b"3 %d %d %d\n" % f for f in TETRA_FACE_LIST)
+TETRA_OBJ = b"".join(b"v %d %d %d\n" % p for p in TETRA_POINTS) + b"".join(b"f %d %d %d\n" % tuple(i + 1 for i in f) for f in TETRA_FACE_LIST)
+TETRA_TRIANGLES = [tuple(TETRA_POINTS[i] for i in f) for f in TETRA_FACE_LIST]
+
+
+def stl_ascii(triangles):
+    facets = b"".join(b"facet normal 0 0 0\nouter loop\n" + b"".join(b"vertex %g %g %g\n" % v for v in t) + b"endloop\nendfacet\n" for t in triangles)
+    return b"solid s\n" + facets + b"endsolid s\n"
+
+
+def png_chunks(ihdr, idat):
+    """A PNG file with these IHDR and IDAT payloads (CRCs right, content as given)."""
+    def chunk(kind, payload):
+        return struct.pack(">I", len(payload)) + kind + payload + struct.pack(">I", zlib.crc32(kind + payload))
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", idat) + chunk(b"IEND", b"")
 
 cases = [
     # --- PLY: header ---
@@ -121,6 +147,57 @@ cases = [
     ("negative_count.pts", "error", "point count -3 is not a non-negative integer", b"-3\n0 0 0 1\n"),
     ("binary_garbage.xyz", "error", "is not a number", bytes([0x13, 0x37, 0xC0, 0xDE] * 16)),
     ("unsupported.dae", "error", "unsupported extension", b"<COLLADA/>\n"),
+    # --- more lying headers, huge counts, truncation (hardening, issue 10) ---
+    ("count_overflows_u64.ply", "error", "not a non-negative integer", ply_header("ascii", "element vertex 99999999999999999999999", *XYZ) + ASCII_TRIANGLE),
+    ("huge_face_count_ascii.ply", "error", "declares 1000000000000 face elements", ply_header("ascii", "element vertex 3", *XYZ, *faces(10**12)) + ASCII_TRIANGLE + b"3 0 1 2\n"),
+    ("huge_list_count_ascii.ply", "error", "list length 1000000000 is impossible", ply_header("ascii", "element vertex 3", *XYZ, *faces(1)) + ASCII_TRIANGLE + b"1000000000 0 1 2\n"),
+    ("truncated_header.ply", "error", "no end_header", b"ply\nformat ascii 1.0\nelement vert"),
+    ("truncated_binary_vertex.ply", "error", "declares 3 vertex elements", ply_header("binary_little_endian", "element vertex 3", *XYZ) + TRIANGLE_VERTICES[:20]),
+    ("lying_stl_count.stl", "warning", "100 bytes after the 1 triangles ignored", bytes(80) + struct.pack("<I", 1) + (le_floats(0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0) + bytes(2)) * 3),
+    ("lying_pts_count.pts", "warning", "declares 1000000 points, the file has 2", b"1000000\n0 0 0 5\n1 1 1 6\n"),
+    ("truncated.obj", "error", "v has 2 coordinates", b"v 0 0 0\nv 1 0 0\nv 0 1"),
+    ("huge_index.obj", "error", 'vertex index "99999999999999999999" is not an integer', b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999\n"),
+    ("truncated_binary_header.stl", "error", "too short for a binary STL", b"\x00" * 83),
+    # --- more NaN and infinity ---
+    ("nan_ascii.stl", "error", "coordinate x is NaN", b"solid s\nfacet normal 0 0 1\nouter loop\nvertex nan 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid s\n"),
+    ("inf_binary_double.ply", "error", "coordinate z is inf", ply_header("binary_little_endian", "element vertex 1", "property double x", "property double y", "property double z") + struct.pack("<3d", 0, 0, float("inf"))),
+    ("nan.pts", "error", "coordinate y is NaN", b"1\n0 nan 0 5\n"),
+    ("overflow_to_inf.obj", "error", "coordinate x is inf", b"v 1e999 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+    # --- textures and material libraries that are missing, wrong or hostile ---
+    ("texture_is_device.obj", "warning", "not a regular file", b"mtllib texture_is_device.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nusemtl m\nf 1/1 2/1 3/1\n"),
+    ("texture_is_device.mtl", "aux", "", b"newmtl m\nmap_Kd /dev/zero\n"),
+    ("library_is_device.obj", "warning", "not a regular file", b"mtllib ../../../../../../dev/zero\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+    ("library_is_folder.obj", "warning", "not a regular file but a folder", b"mtllib .\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+    ("corrupt_texture.obj", "warning", "texture missing or unreadable", b"mtllib corrupt_texture.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nusemtl m\nf 1/1 2/1 3/1\n"),
+    ("corrupt_texture.mtl", "aux", "", b"newmtl m\nmap_Kd corrupt_texture.png\n"),
+    ("corrupt_texture.png", "aux", "", png_chunks(struct.pack(">IIBBBBB", 4, 4, 8, 6, 0, 0, 0), b"not zlib data at all")),
+    ("huge_texture.ply", "warning", "100000 x 100000 pixels is larger than", ply_header("ascii", "comment TextureFile huge_texture.png", "element vertex 3", *XYZ, *faces(1), "property list uchar float texcoord") + ASCII_TRIANGLE + b"3 0 1 2 6 0 0 1 0 0 1\n"),
+    ("huge_texture.png", "aux", "", png_chunks(struct.pack(">IIBBBBB", 100000, 100000, 8, 6, 0, 0, 0), zlib.compress(b"\0" * 64))),
+    ("texture_without_uvs.obj", "warning", "the faces have no texture coordinates", b"mtllib texture_without_uvs.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n"),
+    ("texture_without_uvs.mtl", "aux", "", b"newmtl m\nmap_Kd absent.png\n"),
+    # --- non-UTF-8 names (file names inside files; non-UTF-8 file names are in tests/io_malformed.rs) ---
+    ("non_utf8_library_name.obj", "warning", "material library not loaded", b"mtllib caf\xe9\xff.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+    ("non_utf8_texture_name.obj", "warning", "texture missing or unreadable", b"mtllib non_utf8_texture_name.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nusemtl m\xff\nf 1/1 2/1 3/1\n"),
+    ("non_utf8_texture_name.mtl", "aux", "", b"newmtl m\xff\nmap_Kd t\xe9xture.png\n"),
+    ("non_utf8_stl_name.stl", "repair", "format=stl binary; faces_after=1", b"caf\xe9 \xff\xfe solid name".ljust(80, b"\0") + struct.pack("<I", 1) + le_floats(0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0) + bytes(2)),
+    # --- degenerate geometry, non-manifold, zero-area faces, duplicated vertices: read,
+    # then repaired with the default options; the expected fields of the read and repair
+    # reports are listed as field=value ---
+    ("duplicated_vertices.ply", "repair", "duplicate_vertices_merged=4; unreferenced_vertices_removed=0; vertices_after=4; faces_after=4; watertight=true", ply_header("ascii", "element vertex 8", *XYZ, *faces(4)) + TETRA_ASCII * 2 + b"3 0 6 5\n3 4 1 7\n3 0 3 6\n3 5 2 7\n"),
+    ("zero_area_faces.ply", "repair", "degenerate_faces_removed=2; faces_after=4; watertight=true", ply_header("ascii", "element vertex 5", *XYZ, *faces(6)) + TETRA_ASCII + b"5 0 0\n" + TETRA_FACES_ASCII + b"3 0 1 4\n3 4 1 0\n"),
+    ("repeated_corners.obj", "repair", "degenerate_faces_removed=2; faces_after=4; watertight=true", TETRA_OBJ + b"f 1 1 2\nf 3 3 3\n"),
+    ("duplicate_faces.stl", "repair", "duplicate_faces_removed=2; faces_after=4; watertight=true", stl_ascii(TETRA_TRIANGLES + TETRA_TRIANGLES[:1] + [tuple(reversed(TETRA_TRIANGLES[1]))])),
+    ("non_manifold_edge.ply", "repair", "non_manifold_edge_count=1; non_manifold_edges=[[0, 1]]; watertight=false", ply_header("ascii", "element vertex 5", *XYZ, *faces(3)) + b"0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n"),
+    ("non_manifold_vertex.obj", "repair", "non_manifold_vertex_count=1; component_face_counts=[1, 1]", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv -1 0 0\nv 0 -1 0\nf 1 2 3\nf 1 4 5\n"),
+    ("debris.ply", "repair", "component_face_counts=[4, 1]", ply_header("ascii", "element vertex 7", *XYZ, *faces(5)) + TETRA_ASCII + b"100 100 100\n101 100 100\n100 101 100\n" + TETRA_FACES_ASCII + b"3 4 5 6\n"),
+    ("unreferenced_vertices.obj", "repair", "unreferenced_vertices_removed=3; vertices_after=4", TETRA_OBJ + b"v 5 5 5\nv 6 6 6\nv 7 7 7\n"),
+    ("collinear.ply", "repair", "degenerate_faces_removed=2; faces_after=0", ply_header("ascii", "element vertex 4", *XYZ, *faces(2)) + b"0 0 0\n1 1 1\n2 2 2\n3 3 3\n3 0 1 2\n3 1 2 3\n"),
+    ("all_one_point.stl", "repair", "faces_after=0", stl_ascii([((1, 2, 3), (1, 2, 3), (1, 2, 3))] * 3)),
+    ("single_point.xyz", "repair", "vertices_after=1; faces_after=0", b"1 2 3\n"),
+    ("duplicate_points.xyz", "repair", "duplicate_vertices_merged=2; vertices_after=2", b"1 2 3\n1 2 3\n4 5 6\n1 2 3\n"),
+    ("tiny_coordinates.ply", "repair", "faces_after=4", ply_header("ascii", "element vertex 4", *XYZ, *faces(4)) + b"0 0 0\n1e-30 0 0\n0 1e-30 0\n0 0 1e-30\n" + TETRA_FACES_ASCII),
+    ("huge_coordinates.ply", "repair", "faces_after=4", ply_header("binary_little_endian", "element vertex 4", "property double x", "property double y", "property double z", *faces(4)) + struct.pack("<12d", 0, 0, 0, 1e300, 0, 0, 0, 1e300, 0, 0, 0, 1e300) + b"".join(le_face(*f) for f in TETRA_FACE_LIST)),
+    ("polygons.ply", "repair", "polygons_triangulated=2; faces_after=4", ply_header("ascii", "element vertex 6", *XYZ, *faces(2)) + b"0 0 0\n1 0 0\n1 1 0\n0 1 0\n-1 1 0\n-1 0 0\n4 0 1 2 3\n4 0 3 4 5\n" ),
 ]
 
 
@@ -130,12 +207,11 @@ def main():
         if existing not in kept:
             os.remove(os.path.join(HERE, existing))
     with open(os.path.join(HERE, "expected.tsv"), "w", encoding="utf-8") as table:
-        table.write("# file\tkind\texpected substring (written by generate.py)\n")
+        table.write("# file\tkind\texpected substring, or field=value pairs for \"repair\" (written by generate.py)\n")
         for name, kind, expected, content in cases:
             with open(os.path.join(HERE, name), "wb") as f:
                 f.write(content)
-            if kind != "aux":
-                table.write("%s\t%s\t%s\n" % (name, kind, expected))
+            table.write("%s\t%s\t%s\n" % (name, kind, expected))
 
 
 if __name__ == "__main__":

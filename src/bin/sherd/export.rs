@@ -8,7 +8,7 @@ use std::process::ExitCode;
 use clap::Args;
 
 use sherd::mesh::io::{write_ply, PlyEncoding};
-use sherd::profile::regularity::{distance_to_ideal_vessel, regularity_mesh, ColorMap, ColorScale};
+use sherd::profile::regularity::{ideal_vessel_map, regularity_mesh};
 use sherd::profile::revolve::{oriented_mesh, revolve_profile};
 use sherd::profile::section::{most_informative_angle, profile_section};
 
@@ -72,8 +72,7 @@ pub fn run(args: ExportArgs) -> Result<ExitCode, String> {
         section.write_csv(path).map_err(|e| e.to_string())?;
     }
     if let Some(path) = &args.regularity {
-        let distances = distance_to_ideal_vessel(mesh, axis, &section).map_err(|e| e.to_string())?;
-        let map = ColorMap::fitted(&distances, ColorScale::Diverging, "distance to the ideal vessel", "mm");
+        let (distances, map) = ideal_vessel_map(mesh, axis, &section).map_err(|e| e.to_string())?;
         let coloured = regularity_mesh(&oriented_mesh(mesh, axis), &distances, &map).map_err(|e| e.to_string())?;
         write_ply(path, &coloured, encoding).map_err(|e| e.to_string())?;
     }

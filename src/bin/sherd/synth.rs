@@ -151,10 +151,13 @@ fn check(arguments: &SynthArgs) -> Result<()> {
     if arguments.count == 0 {
         return invalid("--count must be at least 1".into());
     }
-    if let Some(faces) = arguments.faces
-        && faces < 100
-    {
-        return invalid(format!("--faces {faces} is too few for a closed sherd: give at least 100"));
+    if let Some(faces) = arguments.faces {
+        if faces < 100 {
+            return invalid(format!("--faces {faces} is too few for a closed sherd: give at least 100"));
+        }
+        if faces > sherd::synth::MAX_TARGET_FACES {
+            return invalid(format!("--faces {faces} is too many: give at most {}", sherd::synth::MAX_TARGET_FACES));
+        }
     }
     if !(arguments.noise_mm >= 0.0 && arguments.noise_mm.is_finite()) {
         return invalid(format!("--noise-mm {} must be a finite number >= 0", arguments.noise_mm));

@@ -62,16 +62,51 @@ pub fn read_mesh(path: &Path) -> Result<Mesh> {
 /// Reads a mesh or point cloud by extension and says what was skipped or could not be
 /// loaded (unknown PLY elements, a texture named by the MTL file but absent...).
 pub fn read_mesh_with_report(path: &Path) -> Result<(Mesh, ReadReport)> {
+    let bytes = read_regular_file(path, u64::MAX)?;
+    read_mesh_from_bytes(&bytes, path)
+}
+
+/// Largest material library read: MTL files are a few kilobytes, so a bigger one is not
+/// a material library (and must not be loaded whole just to look for `map_Kd`).
+const MAX_MATERIAL_LIBRARY_BYTES: u64 = 16 << 20;
+
+/// Largest texture file read, before decoding (whose own limit is on the decoded size).
+const MAX_TEXTURE_FILE_BYTES: u64 = 256 << 20;
+
+/// Reads the whole of `path`, refusing what is not a regular file (a FIFO, `/dev/zero` or
+/// `/dev/stdin` named by a scan or its material library would block or never end) and a
+/// file larger than `max_bytes`, before reading it.
+fn read_regular_file(path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
+    use std::io::Read;
+    let file = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+    let metadata = file.metadata().map_err(|e| Error::io(path, e))?;
+    let name = path.display().to_string();
+    if !metadata.is_file() {
+        let kind = if metadata.is_dir() { "a folder" } else { "a device, FIFO or socket" };
+        return Err(Error::parse(name, "file", format!("not a regular file but {kind}")));
+    }
+    if metadata.len() > max_bytes {
+        return Err(Error::parse(name, "file", format!("{} bytes, more than the {max_bytes} such a file may have", metadata.len())));
+    }
+    let mut bytes = Vec::with_capacity(metadata.len() as usize);
+    // The file may grow while it is read: never read past the limit either.
+    file.take(max_bytes).read_to_end(&mut bytes).map_err(|e| Error::io(path, e))?;
+    Ok(bytes)
+}
+
+/// Parses `bytes` as the content of the file `path`: the extension chooses the reader,
+/// the name goes into messages, and the folder is where an OBJ's material library and a
+/// texture are looked for. Used by [`read_mesh_with_report`] and by the fuzz targets.
+pub fn read_mesh_from_bytes(bytes: &[u8], path: &Path) -> Result<(Mesh, ReadReport)> {
     let name = path.display().to_string();
     let extension = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase())
         .unwrap_or_default();
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     if bytes.is_empty() {
         return Err(Error::parse(name, "byte 0", "the file is empty"));
     }
-    if let Some(kind) = foreign_signature(&bytes) {
+    if let Some(kind) = foreign_signature(bytes) {
         if !(extension == "png" || extension == "jpg" || extension == "jpeg") {
             return Err(Error::parse(
                 name,
@@ -82,10 +117,10 @@ pub fn read_mesh_with_report(path: &Path) -> Result<(Mesh, ReadReport)> {
     }
     let folder = path.parent();
     let (mesh, report) = match extension.as_str() {
-        "ply" => ply_read::parse_ply(&bytes, &name, folder)?,
-        "obj" => obj::parse_obj(&bytes, &name, folder)?,
-        "stl" => stl::parse_stl(&bytes, &name)?,
-        "xyz" | "pts" | "txt" | "asc" => points::parse_points(&bytes, &name)?,
+        "ply" => ply_read::parse_ply(bytes, &name, folder)?,
+        "obj" => obj::parse_obj(bytes, &name, folder)?,
+        "stl" => stl::parse_stl(bytes, &name)?,
+        "xyz" | "pts" | "txt" | "asc" => points::parse_points(bytes, &name)?,
         _ => {
             return Err(Error::parse(
                 name,

@@ -279,9 +279,9 @@ fn load_material_texture(mesh: &mut Mesh, report: &mut ReadReport, folder: Optio
     let mut materials = Vec::new();
     for library in libraries {
         let path = folder.join(library);
-        match std::fs::read(&path) {
+        match super::read_regular_file(&path, super::MAX_MATERIAL_LIBRARY_BYTES) {
             Ok(bytes) => materials.extend(parse_material_library(&String::from_utf8_lossy(&bytes))),
-            Err(error) => report.warn(format!("material library {} not loaded: {error}", path.display())),
+            Err(error) => report.warn(format!("material library not loaded: {error}")),
         }
     }
     let mut textures: Vec<&String> = Vec::new();

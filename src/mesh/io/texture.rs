@@ -13,7 +13,7 @@ const MAX_DECODED_BYTES: usize = 8192 * 8192 * 4;
 /// Reads a PNG or JPEG texture (chosen by content, not by extension, since exporters
 /// mislabel them) as RGBA8.
 pub(super) fn load_texture(path: &Path) -> Result<Texture> {
-    let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
+    let bytes = super::read_regular_file(path, super::MAX_TEXTURE_FILE_BYTES)?;
     let name = path.display().to_string();
     let (width, height, rgba) = if bytes.starts_with(b"\x89PNG") {
         decode_png(&bytes, &name)?
@@ -30,6 +30,16 @@ fn decode_png(bytes: &[u8], name: &str) -> Result<(u32, u32, Vec<u8>)> {
     let mut decoder = png::Decoder::new_with_limits(bytes, png::Limits { bytes: MAX_DECODED_BYTES });
     decoder.set_transformations(png::Transformations::normalize_to_color8());
     let mut reader = decoder.read_info().map_err(fail)?;
+    // The decoder's limit covers its own buffers, not the frame the caller allocates: a
+    // header declaring 100000 x 100000 pixels is refused here, before that allocation.
+    let (width, height) = (reader.info().width, reader.info().height);
+    if width as u64 * height as u64 * 4 > MAX_DECODED_BYTES as u64 {
+        return Err(Error::parse(
+            name,
+            "PNG header",
+            format!("{width} x {height} pixels is larger than the 8192 x 8192 a texture may have"),
+        ));
+    }
     let mut buffer = vec![0; reader.output_buffer_size()];
     let info = reader.next_frame(&mut buffer).map_err(fail)?;
     buffer.truncate(info.buffer_size());
