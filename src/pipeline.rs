@@ -9,7 +9,7 @@ use std::time::Instant;
 use serde::{Deserialize, Serialize};
 
 use crate::draw::{DrawOptions, Drawing};
-use crate::mesh::decimate::decimate;
+use crate::mesh::decimate::decimate_shape;
 use crate::mesh::io::read_mesh_with_report;
 use crate::mesh::repair::{repair, RepairOptions, RepairReport};
 use crate::mesh::{Mesh, Point};
@@ -124,7 +124,7 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
     let mut refine_copy = None;
     let refine_mesh: &Mesh = match (options.refine_max_faces, &decimated) {
         (Some(max_faces), Some(decimated)) if max_faces == 2 * options.orient.target_vertex_count => decimated,
-        (Some(max_faces), _) if mesh.face_count() > max_faces => refine_copy.insert(decimate(&mesh, max_faces)?),
+        (Some(max_faces), _) if mesh.face_count() > max_faces => refine_copy.insert(decimate_shape(&mesh, max_faces)?),
         _ => &mesh,
     };
     let bootstrap_mesh = match (&decimated, options.bootstrap_on_full_resolution) {
@@ -170,8 +170,8 @@ impl PipelineOptions {
 }
 
 /// Reads `path` and analyses it, in the unit the file declares when `options` give none;
-/// the error says why it could not (the C ABI turns its
-/// kind into a status, [`process_file`] into a record).
+/// the error says why it could not (the C ABI turns its kind into a status,
+/// [`process_file`] into a record).
 pub fn analyse_file(path: &Path, options: &PipelineOptions) -> Result<Analysis> {
     let clock = Instant::now();
     let (mesh, report) = read_mesh_with_report(path)?;

@@ -172,6 +172,14 @@ pub fn decimate(mesh: &Mesh, target_faces: usize) -> Result<Mesh> {
     decimate_with_options(mesh, &DecimateOptions::with_target_faces(target_faces)).map(|(mesh, _)| mesh)
 }
 
+/// `mesh` decimated to `target_faces` for its shape alone (the default options without
+/// texture coordinates): texture seams would only hold collapses back where nothing
+/// looks at the texture (orientation, refinement).
+pub fn decimate_shape(mesh: &Mesh, target_faces: usize) -> Result<Mesh> {
+    let options = DecimateOptions { keep_texture_coordinates: false, ..DecimateOptions::with_target_faces(target_faces) };
+    decimate_with_options(mesh, &options).map(|(decimated, _)| decimated)
+}
+
 /// Decimates `mesh` by quadric edge collapse; returns the result and what was done.
 ///
 /// Errors: an invalid mesh ([`Mesh::validate`]), a point cloud, a zero target, a

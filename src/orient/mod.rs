@@ -170,7 +170,7 @@ pub fn decimated_copy(mesh: &Mesh, options: &OrientOptions) -> Result<Option<Mes
     if mesh.is_point_cloud() || mesh.face_count() <= 2 * options.target_vertex_count {
         return Ok(None);
     }
-    decimate_shape(mesh, 2 * options.target_vertex_count).map(Some)
+    crate::mesh::decimate::decimate_shape(mesh, 2 * options.target_vertex_count).map(Some)
 }
 
 /// [`orient_automatic`] given `decimated`, the [`decimated_copy`] of `mesh` with the same
@@ -348,16 +348,6 @@ fn working_copy(mesh: &Mesh, decimated: Option<&Mesh>, options: &OrientOptions) 
     }
     working.normals = None; // recomputed from the smoothed faces by NormalLines
     Ok(working)
-}
-
-/// `mesh` decimated to `target_faces` for its shape alone: texture seams would only hold
-/// collapses back, and the orientation never looks at the texture.
-fn decimate_shape(mesh: &Mesh, target_faces: usize) -> Result<Mesh> {
-    let options = crate::mesh::decimate::DecimateOptions {
-        keep_texture_coordinates: false,
-        ..crate::mesh::decimate::DecimateOptions::with_target_faces(target_faces)
-    };
-    crate::mesh::decimate::decimate_with_options(mesh, &options).map(|(decimated, _)| decimated)
 }
 
 /// The lines on the surface of revolution: the opposite-normal test on meshes, all lines
