@@ -26,7 +26,7 @@ pub const MAX_REVOLUTION_SEGMENTS: usize = 36_000;
 pub fn revolve_profile(section: &ProfileSection, segments: usize) -> Result<Mesh> {
     if !(3..=MAX_REVOLUTION_SEGMENTS).contains(&segments) {
         return Err(Error::InvalidArgument(format!(
-            "revolution needs 3 to {MAX_REVOLUTION_SEGMENTS} segments, got {segments}"
+            "revolution needs at least 3 segments and at most {MAX_REVOLUTION_SEGMENTS}, got {segments}"
         )));
     }
     let outlines: Vec<Vec<[f64; 2]>> =
