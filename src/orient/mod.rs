@@ -170,7 +170,7 @@ pub fn decimated_copy(mesh: &Mesh, options: &OrientOptions) -> Result<Option<Mes
     if mesh.is_point_cloud() || mesh.face_count() <= 2 * options.target_vertex_count {
         return Ok(None);
     }
-    crate::mesh::decimate::decimate(mesh, 2 * options.target_vertex_count).map(Some)
+    decimate_shape(mesh, 2 * options.target_vertex_count).map(Some)
 }
 
 /// [`orient_automatic`] given `decimated`, the [`decimated_copy`] of `mesh` with the same
