@@ -64,6 +64,8 @@ pub struct Analysis {
     pub measurements: Option<Measurements>,
     /// Seconds spent in each step.
     pub timings: Timings,
+    /// Millimetres per unit of the scan's file (given, or declared by the file).
+    pub millimetres_per_unit: f64,
 }
 
 /// Seconds spent in each step of the pipeline.
@@ -145,7 +147,7 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
         measurements = Some(measure_with_bootstrap_mesh(&mesh, bootstrap_mesh, axis, &options.measure));
         timings.measure_s = clock.elapsed().as_secs_f64();
     }
-    Ok(Analysis { mesh, repair: repair_report, orientation, refinement, measurements, timings })
+    Ok(Analysis { mesh, repair: repair_report, orientation, refinement, measurements, timings, millimetres_per_unit: scale })
 }
 
 impl PipelineOptions {
@@ -167,23 +169,16 @@ impl PipelineOptions {
     }
 }
 
-/// Reads `path` and analyses it; the error says why it could not (the C ABI turns its
+/// Reads `path` and analyses it, in the unit the file declares when `options` give none;
+/// the error says why it could not (the C ABI turns its
 /// kind into a status, [`process_file`] into a record).
 pub fn analyse_file(path: &Path, options: &PipelineOptions) -> Result<Analysis> {
-    analyse_file_in_its_unit(path, options).map(|(analysis, _)| analysis)
-}
-
-/// [`analyse_file`], with the unit the file declares applied when `options` set none
-/// ([`PipelineOptions::with_declared_unit`]); also returns the millimetres per file
-/// unit it used.
-fn analyse_file_in_its_unit(path: &Path, options: &PipelineOptions) -> Result<(Analysis, f64)> {
     let clock = Instant::now();
     let (mesh, report) = read_mesh_with_report(path)?;
-    let options = options.with_declared_unit(report.declared_unit);
     let read_s = clock.elapsed().as_secs_f64();
-    let mut analysis = analyse(mesh, &options)?;
+    let mut analysis = analyse(mesh, &options.with_declared_unit(report.declared_unit))?;
     analysis.timings.read_s = read_s;
-    Ok((analysis, options.scale()))
+    Ok(analysis)
 }
 
 /// Reads `path`, analyses it and, when `drawing` is given and the sherd is oriented, draws
@@ -191,11 +186,11 @@ fn analyse_file_in_its_unit(path: &Path, options: &PipelineOptions) -> Result<(A
 /// status says so, so that a batch goes on.
 pub fn process_file(path: &Path, options: &PipelineOptions, drawing: Option<(&DrawOptions, &Path)>) -> SherdRecord {
     let file = path.display().to_string();
-    let (analysis, millimetres_per_unit) = match analyse_file_in_its_unit(path, options) {
-        Ok(analysed) => analysed,
+    let analysis = match analyse_file(path, options) {
+        Ok(analysis) => analysis,
         Err(error) => return SherdRecord::failed(file, &error),
     };
-    let mut record = SherdRecord::from_analysis(file, &analysis, millimetres_per_unit);
+    let mut record = SherdRecord::from_analysis(file, &analysis, analysis.millimetres_per_unit);
     if let (Some((draw_options, output)), true) = (drawing, analysis.is_oriented()) {
         let clock = Instant::now();
         // The measurements just made (with their intervals) label the drawing, rather

@@ -287,3 +287,29 @@ fn bad_requests_are_clear_errors() {
     assert!(drawing.write(missing).is_err());
     let _ = Axis::z();
 }
+
+/// Found by the C ABI property test: a mesh with coordinates near 1e300 (finite, so
+/// valid) made the view size overflow to zero and the rasterizer panic; a mesh far too
+/// large for its resolution would allocate without bound. Both are refused before any
+/// raster is allocated, naming the size and what to change.
+#[test]
+fn views_too_large_to_render_are_refused_before_allocating() {
+    use sherd::draw::{DrawOptions, Drawing};
+    use sherd::mesh::{Mesh, Point, Vector};
+    use sherd::orient::Axis;
+    let tetrahedron = |size: f64| {
+        Mesh::new(
+            vec![Point::new(0.0, 0.0, 0.0), Point::new(size, 0.0, 0.0), Point::new(0.0, size, 0.0), Point::new(0.0, 0.0, size)],
+            vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+        )
+    };
+    let axis = Axis::new(Point::new(0.0, 0.0, 0.0), Vector::z());
+    for size in [1e300, 1e7] {
+        let message = match Drawing::build(&tetrahedron(size), &axis, &DrawOptions::default()) {
+            Ok(_) => panic!("a {size} mm tetrahedron was drawn"),
+            Err(error) => error.to_string(),
+        };
+        assert!(message.contains("million") && message.contains("lower the resolution"), "{message}");
+    }
+    assert!(Drawing::build(&tetrahedron(50.0), &axis, &DrawOptions::default()).is_ok());
+}

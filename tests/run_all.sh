@@ -14,7 +14,7 @@ root=$(pwd)
 step() { printf '\n==> %s\n' "$*"; }
 
 step "system packages"
-packages=(ghostscript valgrind libgl1 libglu1-mesa pkg-config blender python3-numpy)
+packages=(ghostscript valgrind libgl1 libglu1-mesa pkg-config blender python3-numpy python3-venv)
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then
@@ -41,9 +41,12 @@ if [ -f cbindgen.toml ]; then
 fi
 
 step "Rust tests"
+# Includes the hostile-file corpus (tests/io_malformed.rs), the replay of the fuzz
+# targets' corpora and found inputs (tests/fuzz_regressions.rs; the long fuzz runs are in
+# FUZZING.md) and the SIGKILLed batch (tests/batch_kill.rs).
 cargo test --release --all-targets
 
-step "C and C++ consumers"
+step "C and C++ consumers (under valgrind, or AddressSanitizer without it), the C ABI property test among them"
 if [ -f tests/c/run.sh ]; then bash tests/c/run.sh; fi
 
 step "Python tests"

@@ -388,3 +388,14 @@ fn a_globular_vessel_flags_its_spherical_pieces() {
         assert!(worst < 0.1, "a fragment flagged near-spherical is {worst} mm off a sphere");
     }
 }
+
+/// Found by the C ABI property test (tests/c/test_abi_properties.c): a base sherd asked
+/// for 2 faces (64 at least) whose every fragment plan was too coarse to mesh made
+/// `synthetic_sherd` panic; it now meshes finer until the fragment holds.
+#[test]
+fn a_resolution_too_coarse_for_any_fragment_falls_back_to_a_finer_mesh() {
+    let options = SherdOptions { target_faces: 2, noise_mm: 1e-300, ..SherdOptions::for_part(SherdPart::Base) };
+    let sherd = synthetic_sherd(173682986853376786, &options);
+    assert!(sherd.mesh.triangles.len() >= 64, "{} faces", sherd.mesh.triangles.len());
+    check_fragment(&sherd, "coarse base");
+}

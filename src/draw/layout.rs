@@ -28,6 +28,11 @@ const MARGIN_MM: f64 = 8.0;
 /// Gap between the axis and a view drawn beside it, paper mm.
 const GAP_MM: f64 = 4.0;
 
+/// Most pixels a rendered view may have: 50 million, about 800 MB of depth, face, colour
+/// and darkness buffers. A scan in metres read as millimetres, or 4800 dpi at natural
+/// size of a large sherd, would otherwise allocate without bound.
+const MAX_VIEW_PIXELS: f64 = 50e6;
+
 /// Elements in object coordinates, grouped in layers, with the publication scale.
 struct Canvas {
     /// Object millimetres per paper millimetre (2 for 1:2).
@@ -127,6 +132,28 @@ impl Canvas {
     }
 }
 
+/// Refuses a drawing whose views would exceed [`MAX_VIEW_PIXELS`], before any raster is
+/// allocated. A view of the oriented fragment fits in its bounding cylinder about the
+/// axis: at most twice the largest radius wide and the height tall.
+fn check_view_size(oriented: &[crate::mesh::Point], options: &DrawOptions) -> Result<()> {
+    let pixel_mm = options.scale_denominator as f64 * 25.4 / options.dpi;
+    let radius_mm = oriented.iter().map(|p| p.x.hypot(p.y)).fold(0.0, f64::max);
+    let (low, high) = oriented.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.z), h.max(p.z)));
+    let width_px = 2.0 * radius_mm / pixel_mm + 5.0;
+    let height_px = (high - low) / pixel_mm + 5.0;
+    let pixels = width_px * height_px;
+    if !(pixels.is_finite() && pixels <= MAX_VIEW_PIXELS) {
+        return Err(Error::InvalidArgument(format!(
+            "the views would be up to {width_px:.0} x {height_px:.0} pixels at {} dpi and 1:{}, more than the {} million \
+             a view may have: lower the resolution or raise the scale denominator (or check the scan's units)",
+            options.dpi,
+            options.scale_denominator,
+            MAX_VIEW_PIXELS / 1e6
+        )));
+    }
+    Ok(())
+}
+
 /// Builds the illustration; see [`crate::draw::Drawing::build`].
 pub(crate) fn build(mesh: &Mesh, axis: &Axis, options: &DrawOptions) -> Result<Drawing> {
     mesh.validate()?;
@@ -136,6 +163,7 @@ pub(crate) fn build(mesh: &Mesh, axis: &Axis, options: &DrawOptions) -> Result<D
     options.check()?;
     let frame = oriented_frame(mesh, axis);
     let oriented: Vec<_> = mesh.positions.iter().map(|p| frame * p).collect();
+    check_view_size(&oriented, options)?;
     let scan_normals = match &mesh.normals {
         Some(n) => n.clone(),
         None => compute_vertex_normals(mesh, NormalWeighting::Angle),

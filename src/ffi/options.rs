@@ -231,7 +231,11 @@ pub unsafe extern "C" fn sherd_orient_options_set_smoothing_iterations(options: 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_orient_options_set_opposite_normal_confidence(options: *mut SherdOrientOptions, confidence: f64) -> SherdStatus {
     assign("sherd_orient_options_set_opposite_normal_confidence", options, |o| &mut o.opposite_normal_confidence, || {
-        if confidence == 0.0 { Ok(None) } else { confidence_level(confidence, "confidence").map(Some) }
+        match confidence {
+            0.0 => Ok(None),
+            c if c > 0.0 && c < 1.0 => Ok(Some(c)),
+            c => Err(Failure::invalid(format!("`confidence` must be 0 (no test) or in (0, 1), got {c}"))),
+        }
     })
 }
 

@@ -46,7 +46,6 @@ unsafe fn pipeline_options(
 unsafe fn hand_out_analysis(
     file: String,
     analysis: crate::Result<Analysis>,
-    options: &PipelineOptions,
     out_axis: *mut SherdAxis,
     out_record_json: *mut *mut SherdBuffer,
 ) -> FfiResult {
@@ -57,7 +56,7 @@ unsafe fn hand_out_analysis(
             return Err(error.into());
         }
     };
-    let record = SherdRecord::from_analysis(file, &analysis, options.scale());
+    let record = SherdRecord::from_analysis(file, &analysis, analysis.millimetres_per_unit);
     if let (false, Some(axis)) = (out_axis.is_null(), record.axis.as_ref().and_then(Axis::from_record)) {
         unsafe { write_sized(out_axis, SherdAxis::from_axis(&axis), "out_axis") }?;
     }
@@ -94,7 +93,7 @@ pub unsafe extern "C" fn sherd_process_file(
         let path = unsafe { path_from(path, "path") }?;
         let options = unsafe { pipeline_options(refine_options, millimetres_per_unit, out_axis) }?;
         let analysis = crate::pipeline::analyse_file(&path, &options);
-        unsafe { hand_out_analysis(path.display().to_string(), analysis, &options, out_axis, out_record_json) }
+        unsafe { hand_out_analysis(path.display().to_string(), analysis, out_axis, out_record_json) }
     })
 }
 
@@ -115,6 +114,6 @@ pub unsafe extern "C" fn sherd_analyse(
         let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
         let options = unsafe { pipeline_options(refine_options, millimetres_per_unit, out_axis) }?;
         let analysis = crate::pipeline::analyse(mesh.clone(), &options);
-        unsafe { hand_out_analysis("<memory>".into(), analysis, &options, out_axis, out_record_json) }
+        unsafe { hand_out_analysis("<memory>".into(), analysis, out_axis, out_record_json) }
     })
 }

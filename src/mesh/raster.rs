@@ -56,8 +56,10 @@ impl OrthographicCamera {
             (u0, u1, v0, v1) = (0.0, 0.0, 0.0, 0.0);
         }
         let margin = margin_px as f64 * pixel_mm;
-        let width = ((u1 - u0 + 2.0 * margin) / pixel_mm).ceil() as usize + 1;
-        let height = ((v1 - v0 + 2.0 * margin) / pixel_mm).ceil() as usize + 1;
+        // Saturating: a non-finite or huge extent gives a huge size (which the callers
+        // bound before allocating), never one that wraps to zero.
+        let width = (((u1 - u0 + 2.0 * margin) / pixel_mm).ceil() as usize).saturating_add(1);
+        let height = (((v1 - v0 + 2.0 * margin) / pixel_mm).ceil() as usize).saturating_add(1);
         let origin = Point::from(right * (u0 - margin) + down * (v0 - margin));
         OrthographicCamera { right, down, forward, origin, pixel_mm, width, height }
     }

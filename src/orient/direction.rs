@@ -136,6 +136,8 @@ pub struct ProfileEnds {
     pub lower: [f64; 2],
     /// Largest radius of the piece, mm.
     pub max_radius_mm: f64,
+    /// Typical distance between neighbouring points, mm.
+    pub point_spacing_mm: f64,
     /// Sections that held enough points.
     pub section_count: usize,
 }
@@ -172,7 +174,16 @@ pub fn profile_ends(points: &[Point], axis: &Axis) -> Option<ProfileEnds> {
     let median_radius = radii[radii.len() / 2];
     let max_radius_mm = radii[radii.len() - 1];
     let span = (high - low).max(1e-9);
-    let sections = ((span * median_radius / SECTION_WIDTH_MM).round() as usize).clamp(6, 120);
+    // The typical distance between neighbouring points: both skins over the piece's arc
+    // and profile length share the points. A section narrower than a few of them may
+    // hold no point of the rim and take a point of the skin below for its end.
+    let (along_low, along_high) = samples.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| {
+        let along = (s.radius - mean_r) * ur + (s.height - mean_h) * uh;
+        (lo.min(along), hi.max(along))
+    });
+    let point_spacing_mm = (2.0 * span * median_radius * (along_high - along_low) / n).sqrt();
+    let section_width_mm = SECTION_WIDTH_MM * coarseness(point_spacing_mm);
+    let sections = ((span * median_radius / section_width_mm).round() as usize).clamp(6, 120);
     let mut upper: Vec<Option<(f64, [f64; 2])>> = vec![None; sections];
     let mut lower: Vec<Option<(f64, [f64; 2])>> = vec![None; sections];
     let mut counts = vec![0usize; sections];
@@ -205,7 +216,7 @@ pub fn profile_ends(points: &[Point], axis: &Axis) -> Option<ProfileEnds> {
         let values: Vec<f64> = full.iter().map(|&k| outward * ends[k].expect("counted").0).collect();
         let radii: Vec<f64> = full.iter().map(|&k| ends[k].expect("counted").1[0]).collect();
         let heights: Vec<f64> = full.iter().map(|&k| ends[k].expect("counted").1[1]).collect();
-        let (spread, fraction) = level_measures(&values, &lever);
+        let (spread, fraction) = level_measures(&values, &lever, level_band_mm(point_spacing_mm));
         (spread, fraction, [median(&radii), median(&heights)])
     };
     let (upper_spread_mm, upper_level_fraction, upper) = end(&upper, 1.0);
@@ -218,6 +229,7 @@ pub fn profile_ends(points: &[Point], axis: &Axis) -> Option<ProfileEnds> {
         upper,
         lower,
         max_radius_mm,
+        point_spacing_mm,
         section_count: full.len(),
     })
 }
@@ -226,15 +238,29 @@ pub fn profile_ends(points: &[Point], axis: &Axis) -> Option<ProfileEnds> {
 /// rim's slant (tangent of about 3 degrees).
 const MAX_EDGE_TILT: f64 = 0.05;
 /// Band below the outermost end within which a section's end counts as on the level
-/// edge, mm.
+/// edge, mm, for points spaced under a millimetre (a decimated scan of an ordinary sherd).
 const LEVEL_BAND_MM: f64 = 0.3;
 
+/// The level band for points `spacing_mm` apart: much coarser points sample a rounded
+/// rim's crest less closely, so the band widens with them (and so do the other
+/// millimetre limits of the cue, by the same factor).
+fn level_band_mm(spacing_mm: f64) -> f64 {
+    LEVEL_BAND_MM * coarseness(spacing_mm)
+}
+
+/// How much coarser than usual the points are: 1 up to 3 mm apart (decimated scans and
+/// the synthetic corpus, where wider sections and bands were measured to take breaks
+/// for rims), then in proportion (a scan in centimetres read as millimetres).
+fn coarseness(spacing_mm: f64) -> f64 {
+    (spacing_mm / 3.0).max(1.0)
+}
+
 /// How level one end is: the smallest median absolute deviation of the sections' ends
-/// (`values`, outward positive) and the largest fraction of sections whose end lies
-/// within [`LEVEL_BAND_MM`] of the outermost, over the tilts up to [`MAX_EDGE_TILT`]
+/// (`values`, outward positive, in order round the axis) and the largest fraction of
+/// sections in one run whose ends lie within `band_mm` of the outermost, over the tilts up to [`MAX_EDGE_TILT`]
 /// about either horizontal direction (`lever`: what a unit tilt about each moves a
 /// section's end by).
-fn level_measures(values: &[f64], lever: &[[f64; 2]]) -> (f64, f64) {
+fn level_measures(values: &[f64], lever: &[[f64; 2]], band_mm: f64) -> (f64, f64) {
     let steps = 8;
     let mut best_spread = f64::INFINITY;
     let mut best_fraction: f64 = 0.0;
@@ -252,8 +278,13 @@ fn level_measures(values: &[f64], lever: &[[f64; 2]]) -> (f64, f64) {
             let mut sorted = detilted.clone();
             sorted.sort_by(|a, b| b.total_cmp(a));
             let outermost = sorted[1.min(sorted.len() - 1)];
-            let on_edge = detilted.iter().filter(|v| (outermost - **v).abs() <= LEVEL_BAND_MM).count();
-            best_fraction = best_fraction.max(on_edge as f64 / values.len() as f64);
+            // A rim is one arc: the longest run of neighbouring sections on the edge.
+            let (mut run, mut longest) = (0usize, 0usize);
+            for v in &detilted {
+                run = if (outermost - v).abs() <= band_mm { run + 1 } else { 0 };
+                longest = longest.max(run);
+            }
+            best_fraction = best_fraction.max(longest as f64 / values.len() as f64);
         }
     }
     (best_spread, best_fraction)
@@ -269,18 +300,28 @@ fn level_edge_cue(ends: &ProfileEnds) -> (f64, String) {
     };
     let ratio = other / level.max(1e-3);
     let rise = level_end[1] - other_end[1];
-    if level > LEVEL_SPREAD_MM
-        || ratio < LEVEL_MIN_RATIO
-        || level_fraction < MIN_LEVEL_FRACTION
-        || (other_fraction > 0.5 * level_fraction && ratio < LEVEL_FULL_RATIO)
-        || rise.abs() < MIN_RISE_MM
-    {
+    let scale = coarseness(ends.point_spacing_mm);
+    if level_fraction < MIN_LEVEL_FRACTION || rise.abs() < MIN_RISE_MM * scale {
         return (0.0, String::new());
     }
-    let strength = ((ratio.ln() - LEVEL_MIN_RATIO.ln()) / (LEVEL_FULL_RATIO.ln() - LEVEL_MIN_RATIO.ln())).clamp(0.0, 1.0);
+    // With the rim along most of the arc the spreads compare the two ends directly; along
+    // less than half of it they measure the breaks beside the rim, and only the runs of
+    // level sections compare.
+    let strength = if level_fraction >= 0.5 {
+        if level > LEVEL_SPREAD_MM * scale || ratio < LEVEL_MIN_RATIO || (other_fraction > 0.5 * level_fraction && ratio < LEVEL_FULL_RATIO) {
+            return (0.0, String::new());
+        }
+        ((ratio.ln() - LEVEL_MIN_RATIO.ln()) / (LEVEL_FULL_RATIO.ln() - LEVEL_MIN_RATIO.ln())).clamp(0.0, 1.0)
+    } else {
+        (1.0 - other_fraction / (0.5 * level_fraction)).clamp(0.0, 1.0)
+    };
+    if strength <= 0.0 {
+        return (0.0, String::new());
+    }
     let figures = format!(
-        "{:.0}% of the sections end on it within {LEVEL_BAND_MM} mm, spread {level:.2} mm against {other:.2} mm at the other end",
-        100.0 * level_fraction
+        "{:.0}% of the sections end on it within {:.1} mm, spread {level:.2} mm against {other:.2} mm at the other end",
+        100.0 * level_fraction,
+        level_band_mm(ends.point_spacing_mm)
     );
     if level_end[0] < BASE_CENTRE_RADIUS_FRACTION * ends.max_radius_mm {
         return (-rise.signum() * strength, format!("base centre: one end of the profile closes onto the axis ({figures})"));

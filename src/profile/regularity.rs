@@ -89,8 +89,13 @@ impl SegmentGrid {
 
     /// Distance to the nearest segment, signed by which side of it `p` lies on.
     fn signed_distance(&self, p: [f64; 2]) -> f64 {
-        let column = ((p[0] - self.origin[0]) / self.cell_mm).floor() as i64;
-        let row = ((p[1] - self.origin[1]) / self.cell_mm).floor() as i64;
+        // A point outside the grid starts from the grid's nearest cell: rings grown from
+        // there still bound the distance (p lies beyond that cell on the clamped axes),
+        // and their count is the grid's size, not the point's distance in cells (which
+        // for a tiny outline and a far vertex was billions: the pipeline fuzz target's
+        // hang, fuzz/regressions/pipeline/).
+        let column = (((p[0] - self.origin[0]) / self.cell_mm).floor() as i64).clamp(0, self.columns as i64 - 1);
+        let row = (((p[1] - self.origin[1]) / self.cell_mm).floor() as i64).clamp(0, self.rows as i64 - 1);
         let (mut best, mut best_side) = (f64::INFINITY, 0.0);
         let visit = |c: i64, r: i64, best: &mut f64, best_side: &mut f64| {
             if c < 0 || r < 0 || c >= self.columns as i64 || r >= self.rows as i64 {
@@ -113,7 +118,7 @@ impl SegmentGrid {
             }
         };
         // Grow square rings of cells until no unvisited cell can hold a nearer segment.
-        let max_ring = (self.columns.max(self.rows) as i64) + column.abs().max(row.abs());
+        let max_ring = self.columns.max(self.rows) as i64;
         for ring in 0..=max_ring {
             if ring > 0 && (ring - 1) as f64 * self.cell_mm > best {
                 break;

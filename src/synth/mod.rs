@@ -170,6 +170,10 @@ const WINDOW_MARGIN_CELLS: f64 = 3.0;
 /// command line and the C ABI refuse more, and the mesher never plans more.
 pub const MAX_TARGET_FACES: usize = 10_000_000;
 
+/// The finest mesh tried when the resolution asked for cannot hold a fragment: past the
+/// default (20,000 faces), at which every fragment plan is meshed.
+const MAX_FALLBACK_TARGET_FACES: usize = 80_000;
+
 /// One synthetic sherd for `seed` (deterministic: the same seed and options give the
 /// same mesh, whatever the number of threads).
 pub fn synthetic_sherd(seed: u64, options: &SherdOptions) -> SynthSherd {
@@ -183,34 +187,44 @@ pub fn synthetic_sherd(seed: u64, options: &SherdOptions) -> SynthSherd {
         Some(HardCase::NearSpherical) => VesselShape::Globular,
         _ => options.shape.unwrap_or_else(|| VesselShape::random(rng)),
     };
-    let mut fallback = None;
-    for attempt in 0..MAX_ATTEMPTS {
-        let profile = VesselProfile::random(shape_of(&mut rng), &mut rng);
-        let deformation = Deformation::random(&mut rng, options.deformation_scale, profile.height_mm());
-        let Some(plan) = plan_fragment(&profile, wanted_part, options, &mut rng) else {
-            continue;
-        };
-        let voronoi = RoughVoronoi::new(plan.seeds.clone(), options.roughness_mm, &mut rng);
-        let Some(shell) = mesh_planned_fragment(&profile, &deformation, &voronoi, &plan, options.target_faces) else {
-            continue;
-        };
-        let part = classify(&profile, &shell);
-        let surface = Surface {
-            noise_mm: options.noise_mm,
-            noise_seed: rng.random(),
-            motion_seed: options.random_motion.then(|| rng.random()),
-            colour: options.colours.then(|| ClayColour::random(&mut rng)),
-            hard_case: options.hard_case,
-            fragment_index: None,
-        };
-        if part == wanted_part || attempt + 1 == MAX_ATTEMPTS {
-            return finish(seed, shell, &profile, &deformation, part, &surface);
+    // A mesh asked for a few dozen faces may be too coarse to hold any fragment's outline;
+    // then finer ones are tried, up to past the default resolution, where every plan
+    // holds its own seed.
+    let mut target_faces = options.target_faces;
+    let fallback = loop {
+        let mut fallback = None;
+        for attempt in 0..MAX_ATTEMPTS {
+            let profile = VesselProfile::random(shape_of(&mut rng), &mut rng);
+            let deformation = Deformation::random(&mut rng, options.deformation_scale, profile.height_mm());
+            let Some(plan) = plan_fragment(&profile, wanted_part, options, &mut rng) else {
+                continue;
+            };
+            let voronoi = RoughVoronoi::new(plan.seeds.clone(), options.roughness_mm, &mut rng);
+            let Some(shell) = mesh_planned_fragment(&profile, &deformation, &voronoi, &plan, target_faces) else {
+                continue;
+            };
+            let part = classify(&profile, &shell);
+            let surface = Surface {
+                noise_mm: options.noise_mm,
+                noise_seed: rng.random(),
+                motion_seed: options.random_motion.then(|| rng.random()),
+                colour: options.colours.then(|| ClayColour::random(&mut rng)),
+                hard_case: options.hard_case,
+                fragment_index: None,
+            };
+            if part == wanted_part || attempt + 1 == MAX_ATTEMPTS {
+                return finish(seed, shell, &profile, &deformation, part, &surface);
+            }
+            fallback.get_or_insert((shell, profile, deformation, part, surface));
         }
-        fallback.get_or_insert((shell, profile, deformation, part, surface));
-    }
+        if fallback.is_some() || target_faces >= MAX_FALLBACK_TARGET_FACES {
+            break fallback;
+        }
+        target_faces = (target_faces.max(64) * 4).min(MAX_FALLBACK_TARGET_FACES);
+    };
     // Only reached when no attempt gave the wanted part: the truth says what it is.
     let (shell, profile, deformation, part, surface) =
-        fallback.expect("some attempt yields a fragment: every plan contains its own seed");
+        fallback.expect("some attempt yields a fragment at the default resolution: every plan contains its own seed");
     finish(seed, shell, &profile, &deformation, part, &surface)
 }
 

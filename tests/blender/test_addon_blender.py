@@ -1,13 +1,21 @@
-"""The Blender add-on in a real, headless Blender (run by tests/blender/run.sh):
+"""The Blender add-on in a real, headless Blender (run by tests/blender/run.sh), either as
+a script in Blender 3.x:
 
     blender -b --factory-startup --python-exit-code 1 --python tests/blender/test_addon_blender.py
 
-Installs the built zip as a legacy add-on, enables it, and runs every operator through
-bpy.ops on a synthetic sherd with a known axis (and on ../shared/data/dacord/A011.ply when
-present). Any failed assertion exits Blender with status 1."""
+or with pytest where bpy is a Python module (Blender 4.2, pip install bpy):
 
+    python -m pytest tests/blender        (tests/blender/conftest.py installs the add-on)
+
+Installs the built zip (legacy add-on, or extension through Blender's extension
+installer), enables it, and runs every operator through bpy.ops on a synthetic sherd with
+a known axis (and on ../shared/data/dacord/A011.ply when present). As a script, any
+failed assertion exits Blender with status 1."""
+
+import json
 import math
 import os
+import subprocess
 import sys
 import tempfile
 import traceback
@@ -138,6 +146,35 @@ def stored_measurements_match(obj, vendored, operators):
     return direct, checked
 
 
+class RecordingLayout:
+    """Stands in for a panel's UILayout (a headless Blender draws no UI): records the
+    labels' texts, accepts everything else."""
+
+    def __init__(self, texts=None):
+        self.texts = [] if texts is None else texts
+
+    def label(self, text="", **_):
+        self.texts.append(text)
+
+    def operator(self, *_, **__):
+        return type("OperatorProperties", (), {})()
+
+    def prop(self, *_, **__):
+        pass
+
+    def __getattr__(self, name):  # row, column, box, grid_flow...: a nested layout
+        return lambda *_, **__: RecordingLayout(self.texts)
+
+
+def panel_texts(module):
+    """The texts the Sherd panel shows for the active object."""
+    import importlib
+    panel = importlib.import_module(f"{module}.panel").SHERD_PT_panel
+    layout = RecordingLayout()
+    panel.draw(type("Panel", (), {"layout": layout})(), bpy.context)
+    return layout.texts
+
+
 def check_reconstruction_and_regularity(obj, vendored, operators):
     """Reconstruct and Regularity colours give what the library gives on the object's
     world arrays: the vessel as a new object placed with the sherd (its local z is the
@@ -180,6 +217,34 @@ def check_reconstruction_and_regularity(obj, vendored, operators):
         print(f"  regularity {kind}: {direct.value_range[0]:.2f} to {direct.value_range[1]:.2f} mm")
 
 
+def cli_record(vendored, operators, obj, *arguments):
+    """What ``sherd orient --json`` says of the object's world mesh, written to a file."""
+    positions, triangles, _ = operators.world_arrays(obj)
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, f"{obj.name}.ply")
+        vendored.Mesh.from_arrays(positions, triangles).write_ply(path)
+        run = subprocess.run([str(ROOT / "target" / "release" / "sherd"), "orient", path, "--json", *arguments],
+                             capture_output=True, text=True, check=True)
+    return json.loads(run.stdout)
+
+
+def measurements_match_the_cli(obj, record):
+    """The panel's measurements of an automatically oriented object are the command-line
+    tool's (``--refine none``) on the same mesh, up to the rounding of the PLY file the
+    tool reads (single-precision coordinates)."""
+    direction = np.array(record["axis"]["direction"])
+    angle = math.degrees(math.acos(min(1.0, abs(float(direction @ np.array(obj["sherd_axis_direction"]))))))
+    print(f"  the add-on's axis is {angle:.2e} deg from the CLI's")
+    assert angle < 1e-2, f"the add-on's axis is {angle} deg from the CLI's"
+    for field, key in (("rim_diameter_mm", "sherd_rim_diameter_mm"), ("sector_angle_deg", "sherd_sector_angle_deg"),
+                       ("height_mm", "sherd_height_mm"), ("rim_diameter_interval_mm", "sherd_rim_diameter_interval_mm")):
+        if record[field] is None:
+            assert key not in obj, key
+        else:
+            np.testing.assert_allclose(np.array(obj[key], dtype=np.float64), record[field], rtol=1e-3, err_msg=key)
+    print(f"  measurements equal the CLI's: rim diameter {record['rim_diameter_mm']:.2f} mm")
+
+
 def test_synthetic_sherd(vendored, operators):
     clear_scene()
     # A rim piece whose rim-up sense the library finds: the sense is the library's concern
@@ -199,9 +264,22 @@ def test_synthetic_sherd(vendored, operators):
     assert bpy.ops.sherd.orient_automatic() == {'FINISHED'}, operators.REPORTS[-1:]
     found = np.array(obj["sherd_axis_direction"])
     print(f"  automatic: {math.degrees(math.acos(np.clip(found @ true_direction, -1, 1))):.3f} deg from the truth")
-    assert bpy.ops.sherd.refine(criterion="auto", surface="both") == {'FINISHED'}, operators.REPORTS[-1:]
+    assert bpy.ops.sherd.measure() == {'FINISHED'}
+    measurements_match_the_cli(obj, cli_record(vendored, operators, obj, "--refine", "none"))
+    assert bpy.ops.sherd.refine(criterion="pareto", surface="both") == {'FINISHED'}, operators.REPORTS[-1:]
+    front = np.array(obj["sherd_pareto_front"], dtype=np.float64)
+    assert front.shape[1] == 4 and len(front) == obj["sherd_pareto_point_count"] >= 2, front.shape
+    # Non-dominated: no point is better than another in both costs.
+    assert not ((front[:, None, 2] < front[None, :, 2]) & (front[:, None, 3] < front[None, :, 3])).any()
+    assert "Pareto front" in panel_texts(operators.__name__.rsplit(".", 1)[0])
     assert bpy.ops.sherd.refine(criterion="circles", surface="outer") == {'FINISHED'}, operators.REPORTS[-1:]
     assert obj["sherd_axis_source"].startswith("refined (circles, outer")
+    assert len(obj["sherd_pareto_front"]) == 0
+    # The axis kept: the automatic one refined with the library's choice of criterion (each
+    # refinement starts from the stored axis; the criteria's accuracy is the refinement
+    # layer's to measure: circles moves this sherd's axis by 1.4 deg).
+    assert bpy.ops.sherd.orient_automatic() == {'FINISHED'}, operators.REPORTS[-1:]
+    assert bpy.ops.sherd.refine(criterion="auto", surface="both") == {'FINISHED'}, operators.REPORTS[-1:]
 
     assert bpy.ops.sherd.add_axis_empty() == {'FINISHED'}
     empty = bpy.data.objects["synthetic axis"]
@@ -227,6 +305,9 @@ def test_synthetic_sherd(vendored, operators):
         expect_cancelled(operators, lambda: bpy.ops.sherd.draw(filepath=os.path.join(folder, "x.gif")), "sherd")
 
     check_reconstruction_and_regularity(obj, vendored, operators)
+    texts = panel_texts(operators.__name__.rsplit(".", 1)[0])
+    for expected in ("Rim diameter", "95% interval", "Sector", "Height", "Residual", "Blue: inside", "Red: outside"):
+        assert expected in texts, (expected, texts)
 
     assert bpy.ops.sherd.apply_orientation() == {'FINISHED'}
     after = world_axis_direction(obj.matrix_world, truth.direction)
@@ -318,4 +399,5 @@ def main():
     print("all Blender add-on tests passed")
 
 
-main()
+if __name__ == "__main__":
+    main()

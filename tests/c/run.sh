@@ -29,15 +29,18 @@ cflags=$(pkg-config --cflags sherd)
 shared_libs="$(pkg-config --libs sherd) -Wl,-rpath,$libdir"
 static_libs="-Wl,-Bstatic $(pkg-config --libs sherd) -Wl,-Bdynamic $(pkg-config --static --libs-only-l sherd | sed 's/-lsherd//')"
 
+# Each program has a time limit, so that a hang (an option value that makes an operation
+# run without bound, say) fails the suite instead of stalling it.
+limit=${SHERD_C_TIMEOUT:-1200}
 sanitize=()
 if command -v valgrind >/dev/null 2>&1; then
-  run() { valgrind --quiet --error-exitcode=99 --suppressions="$root/tests/c/valgrind.supp" \
+  run() { timeout "$limit" valgrind --quiet --error-exitcode=99 --suppressions="$root/tests/c/valgrind.supp" \
             --leak-check=full --show-leak-kinds=definite,indirect,possible \
             --errors-for-leak-kinds=definite,indirect,possible "$@"; }
 else
   echo "valgrind not found: using AddressSanitizer and LeakSanitizer"
   sanitize=(-fsanitize=address,undefined -fno-omit-frame-pointer)
-  run() { "$@"; }
+  run() { timeout "$limit" "$@"; }
 fi
 
 c_flags=(-std=c99 -Wall -Wextra -Werror -pedantic -g -pthread)

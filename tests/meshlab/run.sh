@@ -57,10 +57,12 @@ fi
 [ "$(cat "$source_dir/ML_VERSION")" = "$meshlab_release" ] || { echo "unexpected MeshLab sources in $source_dir" >&2; exit 1; }
 
 venv="$cache/venv-pymeshlab-$pymeshlab_version"
-if [ ! -x "$venv/bin/python" ] || ! "$venv/bin/python" -c "import pymeshlab, pytest, numpy" >/dev/null 2>&1; then
+# numpy 1: pymeshlab 2022.2's compiled module crashes on numpy 2 arrays (a 4x4 matrix
+# parameter such as set_matrix's segfaults).
+if [ ! -x "$venv/bin/python" ] || ! "$venv/bin/python" -c "import pymeshlab, pytest, numpy; assert numpy.__version__ < '2'" >/dev/null 2>&1; then
   say "creating $venv with pymeshlab $pymeshlab_version"
   python3 -m venv "$venv"
-  "$venv/bin/python" -m pip install -q --disable-pip-version-check "pymeshlab==$pymeshlab_version" "numpy<3" pytest
+  "$venv/bin/python" -m pip install -q --disable-pip-version-check "pymeshlab==$pymeshlab_version" "numpy<2" pytest
 fi
 # pymeshlab's wheel carries its MeshLab core; the plugin links against that very library.
 common=$("$venv/bin/python" -c 'import os, pymeshlab; print(os.path.join(os.path.dirname(pymeshlab.__file__), "lib", "libmeshlab-common.so"))' 2>/dev/null)

@@ -213,6 +213,8 @@ class SHERD_OT_refine(SherdOperator, bpy.types.Operator):
         obj["sherd_refine_residual_mm"] = float(refinement.residual_mm)
         obj["sherd_refine_tilt_deg"] = float(refinement.tilt_deg)
         obj["sherd_pareto_point_count"] = len(refinement.pareto_front)
+        # Each point: tilt about x and y (deg), centre dispersion and circle residual (mm^2).
+        obj["sherd_pareto_front"] = refinement.pareto_front.tolist()
         self.notify({'INFO'}, f"refined: tilt {refinement.tilt_deg:.2f} deg, residual {refinement.residual_mm:.3f} mm")
         return {'FINISHED'}
 

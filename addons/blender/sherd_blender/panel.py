@@ -21,6 +21,10 @@ class SherdSettings(bpy.types.PropertyGroup):
     regularity_kind: bpy.props.EnumProperty(name="Map", items=operators.REGULARITY_ITEMS, default="ideal_vessel")
 
 
+#: Points of the Pareto front listed in the panel (all are in the custom property).
+PARETO_ROWS = 6
+
+
 def _row(layout, label, value, unit):
     row = layout.row()
     row.label(text=label)
@@ -61,8 +65,16 @@ class SHERD_PT_panel(bpy.types.Panel):
         if "sherd_refine_residual_mm" in obj:
             _row(box, "Residual", f"{obj['sherd_refine_residual_mm']:.3f}", "mm")
             _row(box, "Tilt", f"{obj['sherd_refine_tilt_deg']:.2f}", "deg")
-            if obj.get("sherd_pareto_point_count", 0):
-                _row(box, "Pareto front", f"{obj['sherd_pareto_point_count']}", "points")
+            front = obj.get("sherd_pareto_front", [])
+            if len(front):
+                _row(box, "Pareto front", f"{len(front)}", "points")
+                # The trade-off along the front: each point's two costs, the first few.
+                column = box.column(align=True)
+                column.label(text="dispersion / residual, mm²")
+                for *_, dispersion, residual in list(front)[:PARETO_ROWS]:
+                    column.label(text=f"{dispersion:.4f} / {residual:.4f}")
+                if len(front) > PARETO_ROWS:
+                    column.label(text=f"... {len(front) - PARETO_ROWS} more (sherd_pareto_front)")
 
         column = layout.column(align=True)
         column.operator(operators.SHERD_OT_apply_orientation.bl_idname)

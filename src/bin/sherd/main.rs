@@ -43,6 +43,12 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    // Rust ignores SIGPIPE, so `sherd orient x.ply --json | head` would panic in println!
+    // once head exits; like every Unix filter, sherd should end quietly instead.
+    #[cfg(unix)]
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = Cli::parse();
     let library = |result: sherd::Result<()>| result.map(|()| ExitCode::SUCCESS).map_err(|e| e.to_string());
     let result = match cli.command {

@@ -194,24 +194,36 @@ fn parse_material_library(text: &str) -> Vec<(String, Option<String>)> {
 /// Options take a fixed number of values; what follows them is the file name, which may
 /// contain spaces.
 fn texture_file_of(arguments: &str) -> String {
-    let mut rest = arguments;
-    loop {
-        let mut words = rest.split_whitespace();
-        let Some(option) = words.next().filter(|w| w.starts_with('-')) else { break };
-        let values = match option {
+    // Each word with its byte offset, so that the name is cut where its first word starts
+    // (searching the text for that word would find an earlier copy of it, an option
+    // repeated, and never move on).
+    let mut words = Vec::new();
+    let mut start = None;
+    for (at, c) in arguments.char_indices().chain([(arguments.len(), ' ')]) {
+        match (c.is_whitespace(), start) {
+            (false, None) => start = Some(at),
+            (true, Some(from)) => {
+                words.push((from, &arguments[from..at]));
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    let mut first = 0;
+    while let Some((_, option)) = words.get(first).filter(|(_, w)| w.starts_with('-')) {
+        let values = match *option {
             "-o" | "-s" | "-t" => 3,
             "-mm" => 2,
             _ => 1,
         };
         // Skip the option and its values, but never all remaining words.
-        let words_after: Vec<&str> = rest.split_whitespace().skip(1 + values).collect();
-        if words_after.is_empty() {
+        if first + 1 + values >= words.len() {
             break;
         }
-        let skip_to = rest.find(words_after[0]).unwrap_or(rest.len());
-        rest = &rest[skip_to..];
+        first += 1 + values;
     }
-    rest.trim().replace('\\', "/")
+    let name = words.get(first).map_or("", |&(at, _)| &arguments[at..]);
+    name.trim().replace('\\', "/")
 }
 
 pub(super) fn parse_obj(bytes: &[u8], name: &str, folder: Option<&Path>) -> Result<(Mesh, ReadReport)> {
@@ -331,5 +343,14 @@ mod tests {
     fn map_kd_options_are_skipped() {
         assert_eq!(texture_file_of("-s 1 1 1 -bm 0.5 my texture.jpg"), "my texture.jpg");
         assert_eq!(texture_file_of("tex.png"), "tex.png");
+    }
+
+    /// Found by the obj_mtl fuzz target (fuzz/regressions/obj_mtl/): an option repeated
+    /// after its value made the old text search find the first copy again, for ever.
+    #[test]
+    fn repeated_map_kd_options_end() {
+        assert_eq!(texture_file_of("-x 1 -x -x foo"), "foo");
+        assert_eq!(texture_file_of("-s 1 1 1 -s"), "-s");
+        assert_eq!(texture_file_of("-bm 1 -bm 1 t\\x.png"), "t/x.png");
     }
 }
