@@ -16,7 +16,8 @@
  *   - every handle is freed (the leak checker sees the rest).
  *
  * Deterministic: a fixed seed (SHERD_ABI_SEED overrides it) and SHERD_ABI_ROUNDS rounds
- * (default 120, about a minute under valgrind). A failure prints the seed and round. */
+ * (default 120: about a minute of CPU under valgrind for each linkage). A failure prints
+ * the seed, the round and the arguments. */
 #include <stdint.h>
 
 #include "check.h"
