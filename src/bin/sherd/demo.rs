@@ -25,7 +25,7 @@ pub struct DemoArgs {
     #[arg(short, long, default_value = ".")]
     pub output: PathBuf,
     /// Seed of the synthetic sherd.
-    #[arg(long, default_value_t = 13)]
+    #[arg(long, default_value_t = 6)]
     pub seed: u64,
     /// Triangles of the synthetic scan.
     #[arg(long, default_value_t = 200_000)]
