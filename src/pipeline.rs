@@ -113,7 +113,7 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
         || options.refine_max_faces.is_some()
         || (!options.bootstrap_on_full_resolution && options.measure.bootstrap.samples > 0);
     let decimated = if wants_copy { decimated_copy(&mesh, &options.orient)? } else { None };
-    let mut orientation = match options.manual_points {
+    let orientation = match options.manual_points {
         Some(points) => {
             let points = points.map(|p| Point::from(p.coords * scale));
             orient_from_three_points(&mesh, points, &options.manual)?
@@ -139,13 +139,6 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
         _ => None,
     };
     timings.refine_s = clock.elapsed().as_secs_f64();
-    if let Some(reason) = refinement.as_ref().and_then(|r| r.report.flagged.then(|| r.report.flag_reason.clone())) {
-        // A refined axis its own criterion cannot vouch for is not passed off as an
-        // orientation: the archaeologist is asked to look, as for any undetermined axis.
-        let reason = reason.unwrap_or_else(|| "the criterion does not determine the axis".into());
-        orientation.verdict = Verdict::NeedsManualOrientation { reason: format!("the refinement is not trustworthy: {reason}") };
-    }
-    let oriented = orientation.verdict.is_oriented();
 
     let mut measurements = None;
     if oriented {
