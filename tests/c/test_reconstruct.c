@@ -111,7 +111,7 @@ static void test_reconstruct(const SherdMesh *mesh, const SherdAxis *truth) {
 
     /* Misuse: a status and a message, `*out_mesh` untouched. */
     CHECK_STATUS(sherd_reconstruct(mesh, truth, NAN, 2, &untouched), SHERD_STATUS_INVALID_ARGUMENT);
-    CHECK_MESSAGE("needs 3 to");
+    CHECK_MESSAGE("at least 3 segments");
     CHECK(untouched == (SherdMesh *)(uintptr_t)1);
     CHECK_STATUS(sherd_reconstruct(mesh, truth, INFINITY, 0, &untouched), SHERD_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(sherd_reconstruct(mesh, truth, NAN, 0, NULL), SHERD_STATUS_NULL_POINTER);
