@@ -64,7 +64,7 @@ fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
             Ok(orientation) => {
                 let flagged = !orientation.verdict.is_oriented();
                 match refine(&sherd.mesh, &orientation.axis, &RefineOptions::default()) {
-                    Ok(r) => (r.axis, flagged, format!("{:?}", r.report.method)),
+                    Ok(r) => (r.axis, flagged || r.report.flagged, format!("{:?}", r.report.method)),
                     Err(_) => (orientation.axis, true, "refine failed".into()),
                 }
             }
@@ -80,13 +80,42 @@ fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
         };
         let start = perturbed(&truth.axis, seed);
         match refine(&sherd.mesh, &start, &RefineOptions { criterion, ..Default::default() }) {
-            Ok(r) => (r.axis, false, format!("{:?}", r.report.method)),
+            Ok(r) => {
+                if std::env::var_os("REFINE_ACCURACY_DUMP").is_some() {
+                    use sherd::refine::objective::Objective;
+                    let surface = sherd::refine::sections::PreparedSurface::new(&sherd.mesh, &start, sherd::refine::Surface::Both, None).unwrap();
+                    let circles = sherd::refine::circles::CirclesObjective::new(&surface);
+                    let at = |a: &Axis| circles.value(&surface.parameters_of(a)).sqrt();
+                    eprintln!(
+                        "DUMP {seed} {:?} {:?} angle {:.2} dist {:.2} tilt {:.2} shift {:.2} res {:.4}/{:.4} circles start {:.4} result {:.4} truth {:.4} sector {:.0}",
+                        truth.part, r.report.method, r.axis.line_angle_to_deg(&truth.axis),
+                        mean_point_distance_mm(&sherd.mesh.positions, &r.axis, &truth.axis), r.report.tilt_deg, r.report.shift_mm,
+                        r.report.start_residual_mm, r.report.residual_mm, at(&start), at(&r.axis), at(&truth.axis), truth.sector_angle_deg
+                    );
+                }
+                (r.axis, r.report.flagged, format!("{:?}", r.report.method))
+            }
             Err(_) => (start, true, "refine failed".into()),
         }
     };
     let millis = started.elapsed().as_secs_f64() * 1e3;
     let measurements = (method == "pipeline" || method == "auto")
         .then(|| measure(&sherd.mesh, &axis, &MeasureOptions::default()));
+    if std::env::var_os("REFINE_ACCURACY_DUMP").is_some() {
+        if let Some(m) = &measurements {
+            let half = |i: Option<[f64; 2]>| i.map_or(f64::NAN, |[a, b]| (b - a) / 2.0);
+            let centre = |i: Option<[f64; 2]>| i.map_or(f64::NAN, |[a, b]| (b + a) / 2.0);
+            eprintln!(
+                "COVER {seed} flagged {flagged} rim_err {:.3} rim_half {:.3} base_err {:.3} base_half {:.3} angle {:.3} angle_upper {:.3}",
+                truth.rim_radius_mm.map_or(f64::NAN, |t| 2.0 * t - centre(m.rim_diameter_interval_mm)),
+                half(m.rim_diameter_interval_mm),
+                truth.base_radius_mm.map_or(f64::NAN, |t| 2.0 * t - centre(m.base_diameter_interval_mm)),
+                half(m.base_diameter_interval_mm),
+                axis.line_angle_to_deg(&truth.axis),
+                m.axis_angle_interval_deg.map_or(f64::NAN, |i| i[1]),
+            );
+        }
+    }
     Outcome {
         part: truth.part,
         sector_deg: truth.sector_angle_deg,
@@ -214,6 +243,7 @@ fn report(method: &str, outcomes: &[Outcome]) {
     let wide: Vec<&Outcome> = outcomes.iter().filter(|o| o.sector_deg >= 10.0).collect();
     let wide_within = wide.iter().filter(|o| o.distance_mm <= 4.0).count();
     let wrong_unflagged = outcomes.iter().filter(|o| o.distance_mm > 4.0 && !o.flagged).count();
+    let flagged = outcomes.iter().filter(|o| o.flagged).count();
     let angles: Vec<f64> = outcomes.iter().map(|o| o.angle_deg).collect();
     let mut rim_errors = Vec::new();
     let (mut diameter_inside, mut diameter_total, mut axis_inside, mut axis_total) = (0, 0, 0, 0);
@@ -238,13 +268,14 @@ fn report(method: &str, outcomes: &[Outcome]) {
     }
     let times: Vec<f64> = outcomes.iter().map(|o| o.millis).collect();
     println!(
-        "| {method} | {total} | {:.1}% | {:.1}% ({}) | {:.3} | {:.3} | {:.1}% | {} | {} | {} | {:.0} |",
+        "| {method} | {total} | {:.1}% | {:.1}% ({}) | {:.3} | {:.3} | {:.1}% ({:.1}% flagged) | {} | {} | {} | {:.0} |",
         percent(within, total),
         percent(wide_within, wide.len()),
         wide.len(),
         median(angles.clone()),
         percentile(angles, 0.9),
         percent(wrong_unflagged, total),
+        percent(flagged, total),
         if rim_errors.is_empty() {
             "-".into()
         } else {

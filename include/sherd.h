@@ -1038,7 +1038,8 @@ SherdStatus sherd_mesh_repair(SherdMesh *mesh,
 
 /**
  * Creates a decimated copy of `mesh` with about `target_faces` triangles (quadric edge
- * collapse keeping boundaries, topology and interpolated colours); `mesh` is unchanged.
+ * collapse keeping boundaries, topology, interpolated colours and per-corner texture
+ * coordinates, which never cross a texture seam); `mesh` is unchanged.
  * A mesh already at or below the target is copied as it is.
  *
  * # Safety
@@ -1053,8 +1054,8 @@ SherdStatus sherd_mesh_decimate(const SherdMesh *mesh, size_t target_faces, Sher
  * `reference_point` (3 doubles; usually the fragment's centroid) lands on the +x
  * half-plane, where the drawing shows the exterior.
  *
- * Row-major is numpy's and Blender's `Matrix(rows)` layout; OpenGL and VCG hosts take
- * the transpose.
+ * Row-major is numpy's, Blender's `Matrix(rows)` and VCG's `Matrix44` (MeshLab's layer
+ * transform, `m[row][column]`) layout; OpenGL's column-major arrays take the transpose.
  *
  * # Safety
  * `axis` must point to a `SherdAxis` with `size` set; `reference_point` to 3 doubles;
@@ -1438,8 +1439,9 @@ SherdStatus sherd_draw_options_set_title(SherdDrawOptions *options, const char *
  * `millimetres_per_unit` is 1 for scans in millimetres.
  *
  * Returns `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` (record written, no axis) when the
- * sherd does not determine its axis, and `SHERD_STATUS_INVALID_ARGUMENT` with the
- * record's error when the scan cannot be read or processed.
+ * sherd does not determine its axis. When the scan cannot be read or processed the
+ * record (status `"error"`) is still written, no axis, and the status says why:
+ * `SHERD_STATUS_IO`, `SHERD_STATUS_PARSE`, `SHERD_STATUS_NOT_CONVERGED`...
  *
  * # Safety
  * `path` must be a NUL-terminated string; `refine_options` NULL or live; the
@@ -1463,6 +1465,58 @@ SherdStatus sherd_analyse(const SherdMesh *mesh,
                           double millimetres_per_unit,
                           SherdAxis *out_axis,
                           SherdBuffer **out_record_json);
+
+/**
+ * Creates the 3D reconstruction of the preserved part of the vessel as a new mesh: the
+ * closed outlines of the profile section at `angle_rad` (NaN: the most informative angle)
+ * revolved a full turn with `segments` steps (0: 180, 2 degrees each; at least 3
+ * otherwise). It is watertight, with outward-facing triangles, in the oriented frame
+ * (axis on z, rim up): place it with the scan by applying the inverse of
+ * `sherd_mesh_oriented_transform`. Read it with `sherd_mesh_vertex_count`,
+ * `sherd_mesh_copy_positions` and `sherd_mesh_copy_triangles`; free it with
+ * `sherd_mesh_free`. `SHERD_STATUS_DEGENERATE_GEOMETRY` when the section has no closed
+ * outline; `*out_mesh` is left unchanged on error.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `out_mesh` writable.
+ */
+SherdStatus sherd_reconstruct(const SherdMesh *mesh,
+                              const SherdAxis *axis,
+                              double angle_rad,
+                              size_t segments,
+                              SherdMesh **out_mesh);
+
+/**
+ * Computes a regularity map of `mesh` (the paper's section 2.4.4), one value per vertex
+ * in the mesh's order, as `sherd export --regularity` writes it:
+ *
+ * - `SHERD_REGULARITY_AXIS_DISTANCE`: each vertex's distance to the axis, mm, on a
+ *   rainbow scale (blue near, red far) spanning the 2nd to 98th percentile;
+ * - `SHERD_REGULARITY_IDEAL_VESSEL`: the signed distance, mm, to the vessel revolved from
+ *   the section at `angle_rad` (NaN: the most informative angle), positive where the
+ *   surface stands out of the ideal wall, on a diverging scale symmetric about 0 (blue
+ *   inside, white on it, red outside).
+ *
+ * Writes, for each of these out-pointers that is not NULL (at least one must be given):
+ * `out_values`, `vertex_capacity` floats; `out_rgba`, `4 * vertex_capacity` bytes of
+ * the values' colours (alpha 255); `out_value_range`, 2 doubles: the values at the low
+ * and high ends of the colour scale (for a legend). `vertex_capacity` must be at least
+ * the vertex count (`SHERD_STATUS_BUFFER_TOO_SMALL` otherwise, nothing written).
+ * `SHERD_STATUS_DEGENERATE_GEOMETRY` when the section for the ideal vessel has no
+ * closed outline.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; each out-pointer NULL
+ * or with room for the stated number of values.
+ */
+SherdStatus sherd_regularity(const SherdMesh *mesh,
+                             const SherdAxis *axis,
+                             uint32_t regularity,
+                             double angle_rad,
+                             float *out_values,
+                             uint8_t *out_rgba,
+                             size_t vertex_capacity,
+                             double *out_value_range);
 
 /**
  * Refines `axis` (from `sherd_orient_*`) on `mesh` with the criterion and surface of

@@ -70,20 +70,44 @@ fn orient_json_gives_the_axis_base_to_rim_and_the_rim_radius() {
 }
 
 #[test]
-fn units_option_keeps_the_axis_in_the_file_units_and_reports_millimetres() {
+fn units_from_the_option_or_the_file_keep_the_axis_in_the_file_units_and_report_millimetres() {
     let dir = tempfile::tempdir().unwrap();
     let scans = synth(dir.path(), &["--seed", "13", "--part", "rim", "--faces", "30000"]);
     let in_mm = orient_json(&scans[0], &["--refine", "none"]);
-    let in_cm = orient_json(&scans[0], &["--refine", "none", "--units", "cm"]);
-    let (r_mm, r_cm) = (in_mm["rim_radius_mm"].as_f64().unwrap(), in_cm["rim_radius_mm"].as_f64().unwrap());
-    assert!((r_cm / r_mm - 10.0).abs() < 0.2, "a file in cm has radii 10x larger in mm: {r_mm} vs {r_cm}");
-    let (p_mm, p_cm) = (vector(&in_mm["axis"]["point"]), vector(&in_cm["axis"]["point"]));
+    // The same sherd stored in centimetres.
+    let mut mesh = sherd::mesh::io::read_mesh(&scans[0]).unwrap();
+    mesh.positions.iter_mut().for_each(|p| p.coords /= 10.0);
+    let cm_file = dir.path().join("in_cm.ply");
+    sherd::mesh::io::write_ply(&cm_file, &mesh, sherd::mesh::io::PlyEncoding::BinaryLittleEndian).unwrap();
+    let in_cm = orient_json(&cm_file, &["--refine", "none", "--units", "cm"]);
+    let radius = |json: &Value| json["rim_radius_mm"].as_f64().unwrap_or_else(|| panic!("no rim radius: {json:#}"));
+    let (r_mm, r_cm) = (radius(&in_mm), radius(&in_cm));
+    assert!((r_cm / r_mm - 1.0).abs() < 0.01, "radii are reported in mm whatever the file's unit: {r_mm} vs {r_cm}");
+    let (p_mm, p_cm) = (vector(&in_mm["axis"]["point"]), vector(&in_cm["axis"]["point"]).map(|c| 10.0 * c));
     let d_mm = vector(&in_mm["axis"]["direction"]);
-    // Same line in the file's units: the offset between the two points lies along the axis.
+    // The axis point is in the file's units: times 10, it lies on the same line.
     let offset = [p_cm[0] - p_mm[0], p_cm[1] - p_mm[1], p_cm[2] - p_mm[2]];
     let along = offset[0] * d_mm[0] + offset[1] * d_mm[1] + offset[2] * d_mm[2];
     let across = (offset.iter().map(|c| c * c).sum::<f64>() - along * along).max(0.0).sqrt();
-    assert!(across < 1.0, "the axis moved {across:.2} units across itself when only the units changed");
+    assert!(across < 1.0, "the axis moved {across:.2} mm across itself when only the units changed");
+
+    // A file that declares its unit in a header comment is read in it without --units,
+    // and --units overrides the file.
+    let declared = dir.path().join("declared_in_cm.ply");
+    let bytes = fs::read(&cm_file).unwrap();
+    let format_line = b"format binary_little_endian 1.0\n";
+    let at = bytes.windows(format_line.len()).position(|w| w == format_line).unwrap() + format_line.len();
+    fs::write(&declared, [&bytes[..at], b"comment units cm\n", &bytes[at..]].concat()).unwrap();
+    let info = sherd().arg("info").arg(&declared).arg("--json").output().unwrap();
+    let info: Value = serde_json::from_slice(&info.stdout).unwrap();
+    assert_eq!(info["read"]["declared_unit"], "centimetres", "{info:#}");
+    let from_file = orient_json(&declared, &["--refine", "none"]);
+    assert!((radius(&from_file) / r_cm - 1.0).abs() < 1e-6, "{} vs {r_cm}", radius(&from_file));
+    // Read as millimetres, the sherd is ten times smaller: refused as too small, or a
+    // tenth of the radius; never the radius of the file read in centimetres.
+    let overridden = orient_json(&declared, &["--refine", "none", "--units", "mm"]);
+    let small = overridden["rim_radius_mm"].as_f64().map_or(true, |r| (r / r_mm - 0.1).abs() < 0.01);
+    assert!(small, "--units mm was not applied: {overridden:#}");
 }
 
 #[test]
@@ -130,7 +154,7 @@ fn export_writes_the_oriented_model_the_reconstruction_and_the_profile() {
     fs::write(&axis_file, serde_json::to_vec(&json).unwrap()).unwrap();
     let (oriented, vessel, profile) =
         (dir.path().join("o.ply"), dir.path().join("v.ply"), dir.path().join("p.csv"));
-    sherd()
+    let output = sherd()
         .arg("export")
         .arg(&scans[0])
         .arg("--axis")
@@ -141,8 +165,14 @@ fn export_writes_the_oriented_model_the_reconstruction_and_the_profile() {
         .arg(&vessel)
         .arg("--profile")
         .arg(&profile)
+        .arg("--json")
         .assert()
         .success();
+    let exported: Value = serde_json::from_slice(&output.get_output().stdout).expect("export --json prints one JSON object");
+    assert_eq!(exported["axis"], json["axis"], "the axis read from the file: {exported:#}");
+    assert_eq!(exported["axis_file"], axis_file.display().to_string());
+    let written: Vec<&str> = exported["written"].as_array().unwrap().iter().map(|p| p.as_str().unwrap()).collect();
+    assert_eq!(written, [&oriented, &vessel, &profile].map(|p| p.to_str().unwrap()));
     let info = |path: &Path| -> Value {
         let output = sherd().arg("info").arg(path).arg("--json").output().unwrap();
         assert!(output.status.success());
@@ -229,10 +259,44 @@ fn batch_reports_every_sherd_keeps_going_past_a_broken_file_and_resumes() {
 
 #[test]
 fn help_teaches_by_example() {
-    for command in ["orient", "draw", "export", "batch", "demo"] {
+    for command in ["info", "synth", "orient", "draw", "export", "batch", "demo"] {
         let output = sherd().arg(command).arg("--help").output().unwrap();
         assert!(output.status.success());
         let text = String::from_utf8_lossy(&output.stdout);
         assert!(text.contains("Examples:") && text.contains(&format!("sherd {command}")), "{command}: {text}");
     }
+}
+
+#[test]
+fn draw_json_gives_the_orientation_the_measurements_and_the_drawing() {
+    let dir = tempfile::tempdir().unwrap();
+    let scans = synth(dir.path(), &["--seed", "13", "--part", "rim", "--faces", "30000"]);
+    let drawing = dir.path().join("sherd.svg");
+    let output = sherd().arg("draw").arg(&scans[0]).arg("-o").arg(&drawing).arg("--json").output().unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let json: Value = serde_json::from_slice(&output.stdout).expect("draw --json prints one JSON object");
+    assert_eq!(json["status"], "ok", "{json:#}");
+    let truth = truth_of(&scans[0]);
+    assert!(angle_deg(vector(&json["axis"]["direction"]), vector(&truth["axis"]["direction"])) < 2.0, "{json:#}");
+    assert!(json["rim_radius_mm"].as_f64().is_some() && json["axis_file"].is_null(), "{json:#}");
+    assert_eq!(json["drawing"], drawing.display().to_string());
+    assert_eq!(json["written"][0], drawing.display().to_string());
+    assert!(fs::read_to_string(&drawing).unwrap().contains("<svg"));
+}
+
+#[test]
+fn demo_json_compares_what_was_found_with_the_truth() {
+    let dir = tempfile::tempdir().unwrap();
+    let output = sherd().args(["demo", "--faces", "30000", "--json", "-o"]).arg(dir.path()).output().unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let json: Value = serde_json::from_slice(&output.stdout).expect("demo --json prints only one JSON object");
+    assert_eq!(json["found"]["status"], "ok", "{json:#}");
+    assert_eq!(json["truth"]["part"], "rim", "{json:#}");
+    let error = json["axis_error_deg"].as_f64().unwrap();
+    let measured = angle_deg(vector(&json["found"]["axis"]["direction"]), vector(&json["truth"]["axis"]["direction"]));
+    assert!((error - measured).abs() < 1e-6 && error < 2.0, "{error} vs {measured}");
+    for path in json["written"].as_array().unwrap() {
+        assert!(Path::new(path.as_str().unwrap()).is_file(), "{path} was not written");
+    }
+    assert!(dir.path().join("demo.png").is_file() && dir.path().join("demo.svg").is_file());
 }

@@ -48,6 +48,59 @@ fn synth_writes_every_fragment_of_a_vessel() {
     assert_eq!(truth.fragment_index, Some(0));
 }
 
+/// The `.ply` files of a folder, sorted.
+fn plys(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut files: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "ply"))
+        .collect();
+    files.sort();
+    files
+}
+
+#[test]
+fn synth_outdir_breaks_a_whole_vessel_into_20_to_40_fragments_as_the_issue_says() {
+    let dir = tempfile::tempdir().unwrap();
+    let positional = dir.path().join("positional");
+    let output = Command::cargo_bin("sherd").unwrap().args(["synth", "--seed", "3", "--cell-mm", "4"]).arg(&positional).output().unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let fragments = plys(&positional);
+    assert!((20..=40).contains(&fragments.len()), "{} fragments", fragments.len());
+    for (k, ply) in fragments.iter().enumerate() {
+        let truth = read_truth(&ply.with_extension("truth.json")).unwrap();
+        assert!(truth.fragment_index.is_some(), "{}", ply.display());
+        assert!(ply.file_name().unwrap().to_string_lossy().starts_with("vessel_3_fragment_"), "{k}: {}", ply.display());
+    }
+    // `-o DIR` is the same folder argument, and the same seed gives the same files.
+    let option = dir.path().join("option");
+    Command::cargo_bin("sherd").unwrap().args(["synth", "--seed", "3", "--cell-mm", "4", "-o"]).arg(&option).assert().success();
+    let again = plys(&option);
+    assert_eq!(again.len(), fragments.len());
+    for (a, b) in fragments.iter().zip(&again) {
+        assert_eq!(std::fs::read(a).unwrap(), std::fs::read(b).unwrap(), "{} differs", a.display());
+    }
+    // Both at once is ambiguous; neither is an error naming what is missing.
+    let both = Command::cargo_bin("sherd").unwrap().args(["synth", "-o"]).arg(&option).arg(&positional).output().unwrap();
+    assert_eq!(both.status.code(), Some(2));
+    let neither = Command::cargo_bin("sherd").unwrap().args(["synth", "--seed", "3"]).output().unwrap();
+    assert_eq!(neither.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&neither.stderr).contains("OUTDIR"), "{}", String::from_utf8_lossy(&neither.stderr));
+}
+
+#[test]
+fn synth_part_or_faces_asks_for_one_sherd_per_seed() {
+    let dir = tempfile::tempdir().unwrap();
+    let output = Command::cargo_bin("sherd").unwrap().args(["synth", "--count", "2", "--faces", "2000"]).arg(dir.path()).output().unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let files = plys(dir.path());
+    assert_eq!(files.len(), 2, "{files:?}");
+    assert!(files.iter().all(|f| f.file_name().unwrap().to_string_lossy().starts_with("sherd_")), "{files:?}");
+    // Vessel options make no sense for one sherd: refused, not ignored.
+    let output = Command::cargo_bin("sherd").unwrap().args(["synth", "--part", "rim", "--fragments", "30"]).arg(dir.path()).output().unwrap();
+    assert_eq!(output.status.code(), Some(2), "{}", String::from_utf8_lossy(&output.stderr));
+}
+
 #[test]
 fn synth_rejects_bad_arguments_clearly() {
     let dir = tempfile::tempdir().unwrap();

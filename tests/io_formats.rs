@@ -84,6 +84,21 @@ fn obj_vertex_colours_and_point_cloud_normals() {
     assert_eq!(mesh.normals.unwrap(), vec![Vector::z(), Vector::x()]);
 }
 
+#[test]
+fn obj_and_ply_comments_declaring_a_unit_are_reported() {
+    use sherd::mesh::io::LengthUnit;
+    let dir = tempfile::tempdir().unwrap();
+    let obj = dir.path().join("metres.obj");
+    std::fs::write(&obj, "# exported by a photogrammetry tool\n# Units: meters\nv 0 0 0\nv 0.1 0 0\nv 0 0.1 0 # a vertex\nf 1 2 3\n").unwrap();
+    assert_eq!(read_mesh_with_report(&obj).unwrap().1.declared_unit, Some(LengthUnit::Metres));
+    let ply = dir.path().join("cm.ply");
+    std::fs::write(&ply, "ply\nformat ascii 1.0\nobj_info length_unit = cm\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n").unwrap();
+    assert_eq!(read_mesh_with_report(&ply).unwrap().1.declared_unit, Some(LengthUnit::Centimetres));
+    let silent = dir.path().join("silent.obj");
+    std::fs::write(&silent, TEXTURED_QUAD_OBJ.replace("mtllib quad.mtl\n", "")).unwrap();
+    assert_eq!(read_mesh_with_report(&silent).unwrap().1.declared_unit, None, "a comment without a unit declares none");
+}
+
 fn tetrahedron_corners() -> [[[f32; 3]; 3]; 4] {
     let p = [[0.0f32, 0.0, 0.0], [10.0, 0.0, 0.0], [0.0, 10.0, 0.0], [0.0, 0.0, 10.0]];
     [[p[0], p[2], p[1]], [p[0], p[1], p[3]], [p[0], p[3], p[2]], [p[1], p[2], p[3]]]

@@ -23,7 +23,6 @@ fn true_capacity_litres(inner_profile: &[[f64; 2]]) -> f64 {
 }
 
 #[test]
-#[ignore = "known defect (issue 4): the bootstrap intervals are not calibrated; on the merged generator the diameter interval of some rims is 40% wide and the axis interval 0 or 20 deg (coverage in BENCHMARKS.md, Refinement)"]
 fn rim_sherd_measured_at_its_true_axis() {
     let mut checked = 0;
     for seed in 0..6 {
@@ -94,4 +93,18 @@ fn degenerate_mesh_is_reported_not_measured() {
     let mesh = Mesh::new(vec![Point::origin(); 4], vec![]);
     let m = measure(&mesh, &Axis::z(), &MeasureOptions::default());
     assert!(m.rim_radius_mm.is_none() && m.notes.iter().any(|n| n.contains("too few vertices")), "{m:?}");
+}
+
+/// Finely meshed rim sherds at their true axes (seeds the issue names, 200k faces): the
+/// outer skin once vanished into one region with the inner one across the rounded lip
+/// (seeds 2, 6, 12), and a rim kept over a third of the arc (seed 16) counted as not level.
+#[test]
+fn rims_of_finely_meshed_sherds_are_found() {
+    for seed in [2, 6, 12, 16] {
+        let sherd = synthetic_sherd(seed, &SherdOptions { target_faces: 200_000, ..SherdOptions::for_part(SherdPart::Rim) });
+        let m = measure(&sherd.mesh, &sherd.truth.axis, &MeasureOptions { bootstrap: BootstrapOptions { samples: 0, ..Default::default() }, ..Default::default() });
+        let truth = sherd.truth.rim_radius_mm.expect("a rim sherd has a rim radius");
+        let rim = m.rim_radius_mm.unwrap_or_else(|| panic!("seed {seed}: rim not found: {:?}", m.notes));
+        assert!((rim - truth).abs() < 0.02 * truth, "seed {seed}: rim radius {rim} vs {truth}");
+    }
 }

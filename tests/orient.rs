@@ -105,7 +105,15 @@ fn bowl_wall_is_oriented_within_two_degrees() {
         let orientation = orient_automatic(&mesh, &OrientOptions::default()).unwrap();
         let error = orientation.axis.line_angle_to_deg(&truth);
         assert!(error < 2.0, "seed {seed}: {error} deg, report {:?}", orientation.report);
-        assert!(orientation.verdict.is_oriented(), "seed {seed}: {:?} {:?}", orientation.verdict, orientation.report);
+        // The band is cut level at both ends, so only its flare (dr/dz 0.45-0.85) tells up
+        // from down, which jars' shoulders contradict: the line must be accepted, the
+        // sense may be flagged, and if it is not it must be right.
+        match &orientation.verdict {
+            Verdict::Oriented => assert!(orientation.axis.angle_to_deg(&truth) < 90.0, "seed {seed}: upside down"),
+            Verdict::NeedsManualOrientation { reason } => {
+                assert!(reason.contains("which way is up"), "seed {seed}: {reason} {:?}", orientation.report)
+            }
+        }
         let distance = truth.distance_to(&orientation.axis.point);
         assert!(distance < 3.0, "seed {seed}: axis point {distance} mm off");
     }
@@ -269,13 +277,51 @@ fn synthetic_corpus_meets_the_accuracy_goals() {
         100.0 * summary.wrong_angle_unflagged_fraction
     );
     assert!(summary.flagged_fraction < 0.6, "{:.0}% flagged", 100.0 * summary.flagged_fraction);
+    // The paper's distance counts the sense: an upside-down piece is wrong however good
+    // its axis line.
+    assert!(
+        summary.wrong_distance_unflagged_fraction <= 0.05,
+        "{:.1}% of the fragments are more than 4 mm off (sense included) and not flagged",
+        100.0 * summary.wrong_distance_unflagged_fraction
+    );
+    let upside_down: Vec<&str> = outcomes.iter().filter(|o| !o.flagged && !o.sense_correct).map(|o| o.id.as_str()).collect();
+    assert!(upside_down.is_empty(), "oriented upside down and not flagged: {upside_down:?}");
+}
+
+/// Rim pieces (the generator's seeds 1-16): each one is either oriented within 5 degrees
+/// and the right way up, or flagged; never confidently upside down (seeds 1, 8, 10, 11,
+/// 14 and 15 were, before the level-rim cue).
+#[test]
+fn rim_pieces_are_the_right_way_up_or_flagged() {
+    use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
+    let mut oriented = 0;
+    for seed in 1..=16 {
+        let sherd = synthetic_sherd(seed, &SherdOptions::for_part(SherdPart::Rim));
+        let orientation = orient_automatic(&sherd.mesh, &OrientOptions::default()).unwrap();
+        if !orientation.verdict.is_oriented() {
+            continue;
+        }
+        oriented += 1;
+        let line_deg = orientation.axis.line_angle_to_deg(&sherd.truth.axis);
+        let direction_deg = orientation.axis.angle_to_deg(&sherd.truth.axis);
+        assert!(
+            line_deg < 5.0 && direction_deg < 90.0,
+            "rim seed {seed} oriented {line_deg:.1} deg off, {direction_deg:.0} deg from base-to-rim: {:?}",
+            orientation.report
+        );
+        assert!(orientation.report.direction_cue.contains("level rim"), "rim seed {seed}: {}", orientation.report.direction_cue);
+    }
+    // Flagging every piece would pass the loop: most rims are found.
+    assert!(oriented >= 10, "only {oriented} of 16 rim pieces oriented");
 }
 
 #[test]
 fn hard_presets_are_flagged() {
     use sherd::synth::{synthetic_sherd, HardCase, SherdOptions};
     for case in [HardCase::FlatBase, HardCase::NearSpherical, HardCase::Tiny] {
-        for seed in 0..3 {
+        // 0..8 covers the near-spherical seeds 2, 3, 4 and 6 that an axis 60-80 degrees
+        // off once passed on.
+        for seed in 0..8 {
             let sherd = synthetic_sherd(seed, &SherdOptions::hard_case(case));
             let orientation = orient_automatic(&sherd.mesh, &OrientOptions::default()).unwrap();
             assert!(

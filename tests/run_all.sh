@@ -14,7 +14,7 @@ root=$(pwd)
 step() { printf '\n==> %s\n' "$*"; }
 
 step "system packages"
-packages=(ghostscript valgrind libgl1 libglu1-mesa pkg-config blender python3-numpy)
+packages=(ghostscript valgrind libgl1 libglu1-mesa pkg-config blender python3-numpy python3-venv)
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then
@@ -54,6 +54,10 @@ if compgen -G "tests/python/test_*.py" >/dev/null; then
   python3 -m pytest -q tests/python
 fi
 
-step "Blender add-on (headless Blender)"; bash tests/blender/run.sh
+step "Python wheel (manylinux_2_28, installed in a fresh venv)"; bash tests/wheel/run.sh
+
+step "Blender add-on (headless Blender 3.4 and the bpy 4.2 module)"; bash tests/blender/run.sh
+
+step "MeshLab filter plugin (MeshLab 2022.02 sources, pymeshlab 2022.2.post4)"; bash tests/meshlab/run.sh
 
 step "all tests passed"

@@ -460,6 +460,84 @@ inline void export_profile_csv(const Mesh& mesh, const SherdAxis& axis, const st
     check(sherd_export_profile_csv(mesh.get(), &axis, angle_rad, path.c_str()));
 }
 
+/// The 3D reconstruction: the profile section at `angle_rad` (NaN: the most informative)
+/// revolved in `segments` steps (0: 180), a closed mesh in the oriented frame (apply the
+/// inverse of `mesh.oriented_transform(axis)` to place it with the scan).
+inline Mesh reconstruct(const Mesh& mesh, const SherdAxis& axis, double angle_rad = NAN, std::size_t segments = 0) {
+    SherdMesh* handle = nullptr;
+    check(sherd_reconstruct(mesh.get(), &axis, angle_rad, segments, &handle));
+    return Mesh(handle);
+}
+
+/// A regularity map: one value (mm) and one RGBA colour per vertex of the mesh, and the
+/// values at the ends of the colour scale.
+struct Regularity {
+    std::vector<float> values;
+    std::vector<std::uint8_t> rgba;
+    std::array<double, 2> value_range;
+};
+
+/// The regularity map `kind` (SHERD_REGULARITY_*) of `mesh` about `axis`; `angle_rad` is
+/// the section of the ideal vessel (NaN: the most informative).
+inline Regularity regularity(const Mesh& mesh, const SherdAxis& axis,
+                             std::uint32_t kind = SHERD_REGULARITY_IDEAL_VESSEL, double angle_rad = NAN) {
+    const std::size_t count = mesh.vertex_count();
+    Regularity map{std::vector<float>(count), std::vector<std::uint8_t>(4 * count), {}};
+    check(sherd_regularity(mesh.get(), &axis, kind, angle_rad, map.values.data(), map.rgba.data(), count,
+                           map.value_range.data()));
+    return map;
+}
+
+/// What the whole pipeline found (`sherd orient --json`'s record): `status` is
+/// SHERD_STATUS_OK or SHERD_STATUS_NEEDS_MANUAL_ORIENTATION (then `axis` is unset and
+/// `reason` says why); errors throw.
+struct Analysis {
+    SherdStatus status;
+    SherdAxis axis;
+    std::string reason;
+    std::string record_json;
+};
+
+namespace detail {
+template <typename Call>
+Analysis finish_analysis(Call call) {
+    Analysis result{SHERD_STATUS_OK, make_axis({0, 0, 0}, {0, 0, 0}), {}, {}};
+    SherdBuffer* json = nullptr;
+    result.status = call(&result.axis, &json);
+    if (result.status != SHERD_STATUS_OK && result.status != SHERD_STATUS_NEEDS_MANUAL_ORIENTATION) {
+        const std::string message = sherd_last_error_message();
+        if (json) sherd_buffer_free(json);
+        throw Error(result.status, message);
+    }
+    if (result.status != SHERD_STATUS_OK) result.reason = sherd_last_error_message();
+    result.record_json = take_buffer(json);
+    return result;
+}
+
+inline SherdRefineOptions* refine_options_or_default(const RefineOptions* options) {
+    return options ? options->get() : nullptr;
+}
+}  // namespace detail
+
+/// Reads, repairs, orients, refines and measures the scan at `path` as `sherd orient
+/// --json` does; `refine_options` NULL for the command's default (AUTO, both surfaces).
+inline Analysis process_file(const std::string& path, const RefineOptions* refine_options = nullptr,
+                             double millimetres_per_unit = 1.0) {
+    return detail::finish_analysis([&](SherdAxis* axis, SherdBuffer** json) {
+        return sherd_process_file(path.c_str(), detail::refine_options_or_default(refine_options),
+                                  millimetres_per_unit, axis, json);
+    });
+}
+
+/// Like process_file for a mesh already in memory (the record's file is "<memory>").
+inline Analysis analyse(const Mesh& mesh, const RefineOptions* refine_options = nullptr,
+                        double millimetres_per_unit = 1.0) {
+    return detail::finish_analysis([&](SherdAxis* axis, SherdBuffer** json) {
+        return sherd_analyse(mesh.get(), detail::refine_options_or_default(refine_options), millimetres_per_unit,
+                             axis, json);
+    });
+}
+
 }  // namespace sherd
 
 #endif  // SHERD_HPP

@@ -17,7 +17,7 @@ use crate::mesh::occlusion::ambient_occlusion;
 use crate::mesh::Mesh;
 use crate::orient::Axis;
 use crate::profile::measure::{measure, MeasureOptions, Measurements};
-use crate::profile::regularity::{distance_to_axis, distance_to_ideal_vessel, ColorMap, ColorScale};
+use crate::profile::regularity::{axis_distance_map, distance_to_ideal_vessel, ColorMap, ColorScale};
 use crate::profile::section::{angular_extent, most_informative_angle, oriented_frame, section_of_oriented, ProfileSection};
 use crate::{Error, Result};
 
@@ -197,11 +197,7 @@ pub(crate) fn build(mesh: &Mesh, axis: &Axis, options: &DrawOptions) -> Result<D
     };
     let regularity = if style.regularity {
         Some(match options.regularity {
-            RegularityKind::AxisDistance => {
-                let values = distance_to_axis(mesh, axis);
-                let map = ColorMap::fitted(&values, ColorScale::Rainbow, "distance to axis", "mm");
-                (values, map)
-            }
+            RegularityKind::AxisDistance => axis_distance_map(mesh, axis),
             RegularityKind::IdealVessel => {
                 let values: Vec<f32> = distance_to_ideal_vessel(mesh, axis, &section)?.iter().map(|v| v.abs()).collect();
                 let map = ColorMap::fitted(&values, ColorScale::Rainbow, "distance to ideal vessel", "mm");

@@ -15,6 +15,10 @@ pub fn stipple_dots(darkness: &[f32], width: usize, height: usize, spacing_px: f
     if width == 0 || height == 0 || spacing_px <= 0.0 || darkness.len() != width * height {
         return Vec::new();
     }
+    // Dots closer than one pixel of the view would sample the same tone and only cost
+    // time: at very low resolutions (a few dpi) the candidates and the grid grow as the
+    // inverse square of the spacing, which made a 10 dpi drawing take 16 s (fuzzing).
+    let spacing_px = spacing_px.max(1.0);
     let tone_at = |x: f64, y: f64| {
         let (column, row) = ((x as usize).min(width - 1), (y as usize).min(height - 1));
         darkness[row * width + column]

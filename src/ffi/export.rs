@@ -12,11 +12,12 @@ use super::pointers::{path_from, require, write_out};
 use super::status::SherdStatus;
 use crate::mesh::Mesh;
 use crate::orient::Axis;
-use crate::profile::revolve::{oriented_mesh, revolve_profile};
+use super::reconstruct::reconstruction;
+use crate::profile::revolve::oriented_mesh;
 use crate::profile::section::{ProfileSection, most_informative_angle, profile_section};
 
 /// The section at `angle_rad`, or at the most informative angle when it is NaN.
-fn section_at(mesh: &Mesh, axis: &Axis, angle_rad: f64) -> FfiResult<ProfileSection> {
+pub(crate) fn section_at(mesh: &Mesh, axis: &Axis, angle_rad: f64) -> FfiResult<ProfileSection> {
     let angle = if angle_rad.is_nan() { most_informative_angle(mesh, axis) } else { angle_rad };
     crate::profile::section::check_angle(angle)?;
     let section = profile_section(mesh, axis, angle);
@@ -113,7 +114,7 @@ pub unsafe extern "C" fn sherd_profile_csv(
 }
 
 /// Steps per turn of a reconstruction when the caller passes 0: 2 degrees each.
-const DEFAULT_REVOLUTION_SEGMENTS: usize = 180;
+pub(crate) const DEFAULT_REVOLUTION_SEGMENTS: usize = 180;
 
 /// Writes the 3D reconstruction of the preserved part of the vessel as PLY: the closed
 /// outlines of the profile section at `angle_rad` (NaN: the most informative angle)
@@ -137,8 +138,7 @@ pub unsafe extern "C" fn sherd_export_reconstruction_ply(
         let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
         let axis = unsafe { read_axis(axis, "axis") }?;
         let path = unsafe { path_from(path, "path") }?;
-        let segments = if segments == 0 { DEFAULT_REVOLUTION_SEGMENTS } else { segments };
-        let reconstruction = revolve_profile(&section_at(mesh, &axis, angle_rad)?, segments)?;
-        Ok(crate::mesh::io::write_ply(&path, &reconstruction, ply_encoding(binary))?)
+        let vessel = reconstruction(mesh, &axis, angle_rad, segments)?;
+        Ok(crate::mesh::io::write_ply(&path, &vessel, ply_encoding(binary))?)
     })
 }

@@ -297,7 +297,7 @@ pub unsafe extern "C" fn sherd_mesh_attributes(mesh: *const SherdMesh, out_attri
 }
 
 /// Copies `items` (each `N` scalars) into the host's array of `capacity` items.
-fn copy_out<T: Copy, const N: usize>(items: &[[T; N]], out: *mut T, capacity: usize, what: &str) -> FfiResult {
+pub(crate) fn copy_out<T: Copy, const N: usize>(items: &[[T; N]], out: *mut T, capacity: usize, what: &str) -> FfiResult {
     if capacity < items.len() {
         return Err(Failure::new(
             SherdStatus::BufferTooSmall,
@@ -476,7 +476,8 @@ pub unsafe extern "C" fn sherd_mesh_repair(
 }
 
 /// Creates a decimated copy of `mesh` with about `target_faces` triangles (quadric edge
-/// collapse keeping boundaries, topology and interpolated colours); `mesh` is unchanged.
+/// collapse keeping boundaries, topology, interpolated colours and per-corner texture
+/// coordinates, which never cross a texture seam); `mesh` is unchanged.
 /// A mesh already at or below the target is copied as it is.
 ///
 /// # Safety

@@ -32,6 +32,46 @@ fn set<B>(function: &str, options: *mut B, setter: impl FnOnce(&mut B) -> FfiRes
     guard(function, || setter(unsafe { borrow_mut(options, "options") }?))
 }
 
+/// An option builder: a handle around the Rust options of one operation.
+trait Builder {
+    type Options;
+    fn options_mut(&mut self) -> &mut Self::Options;
+}
+
+/// The setter of one option: checks the handle, then the value (`value` refuses it with
+/// its reason), and stores it in the `field` of the builder's options.
+fn assign<B: Builder, V>(
+    function: &str,
+    options: *mut B,
+    field: impl FnOnce(&mut B::Options) -> &mut V,
+    value: impl FnOnce() -> FfiResult<V>,
+) -> SherdStatus {
+    set(function, options, |builder| {
+        *field(builder.options_mut()) = value()?;
+        Ok(())
+    })
+}
+
+macro_rules! builders {
+    ($($builder:ident => $options:ty),* $(,)?) => {$(
+        impl Builder for $builder {
+            type Options = $options;
+            fn options_mut(&mut self) -> &mut $options {
+                &mut self.options
+            }
+        }
+    )*};
+}
+
+builders!(
+    SherdRepairOptions => RepairOptions,
+    SherdOrientOptions => OrientOptions,
+    SherdManualOptions => ManualOptions,
+    SherdRefineOptions => RefineOptions,
+    SherdMeasureOptions => MeasureOptions,
+    SherdDrawOptions => DrawOptions,
+);
+
 /// The options behind a nullable builder pointer: the builder's, or the defaults.
 pub(crate) unsafe fn options_or_default<B, T: Clone + Default>(options: *const B, get: impl FnOnce(&B) -> &T) -> FfiResult<T> {
     if options.is_null() {
@@ -70,6 +110,20 @@ fn positive_count(value: usize, name: &str) -> FfiResult<usize> {
     if value > 0 { Ok(value) } else { Err(Failure::invalid(format!("`{name}` must be at least 1"))) }
 }
 
+/// A finite positive length, or `None` (the library's default) for 0.
+fn positive_or_default(value: f64, name: &str) -> FfiResult<Option<f64>> {
+    if value == 0.0 { Ok(None) } else { finite_positive(value, name).map(Some) }
+}
+
+/// A confidence level, strictly between 0 and 1.
+fn confidence_level(value: f64, name: &str) -> FfiResult<f64> {
+    if value > 0.0 && value < 1.0 {
+        Ok(value)
+    } else {
+        Err(Failure::invalid(format!("`{name}` must be in (0, 1), got {value}")))
+    }
+}
+
 // ---------------------------------------------------------------- repair
 
 /// Options of `sherd_mesh_repair`.
@@ -104,10 +158,8 @@ pub unsafe extern "C" fn sherd_repair_options_free(options: *mut SherdRepairOpti
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_repair_options_set_merge_tolerance_mm(options: *mut SherdRepairOptions, tolerance_mm: f64) -> SherdStatus {
-    set("sherd_repair_options_set_merge_tolerance_mm", options, |builder| {
-        builder.options.merge_tolerance_mm =
-            if tolerance_mm == 0.0 { None } else { Some(finite_positive(tolerance_mm, "tolerance_mm")?) };
-        Ok(())
+    assign("sherd_repair_options_set_merge_tolerance_mm", options, |o| &mut o.merge_tolerance_mm, || {
+        positive_or_default(tolerance_mm, "tolerance_mm")
     })
 }
 
@@ -117,10 +169,7 @@ pub unsafe extern "C" fn sherd_repair_options_set_merge_tolerance_mm(options: *m
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_repair_options_set_keep_largest_component(options: *mut SherdRepairOptions, keep: bool) -> SherdStatus {
-    set("sherd_repair_options_set_keep_largest_component", options, |builder| {
-        builder.options.keep_largest_component = keep;
-        Ok(())
-    })
+    assign("sherd_repair_options_set_keep_largest_component", options, |o| &mut o.keep_largest_component, || Ok(keep))
 }
 
 // ---------------------------------------------------------------- automatic orientation
@@ -157,9 +206,8 @@ pub unsafe extern "C" fn sherd_orient_options_free(options: *mut SherdOrientOpti
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_orient_options_set_target_vertex_count(options: *mut SherdOrientOptions, count: usize) -> SherdStatus {
-    set("sherd_orient_options_set_target_vertex_count", options, |builder| {
-        builder.options.target_vertex_count = positive_count(count, "count")?;
-        Ok(())
+    assign("sherd_orient_options_set_target_vertex_count", options, |o| &mut o.target_vertex_count, || {
+        positive_count(count, "count")
     })
 }
 
@@ -170,9 +218,8 @@ pub unsafe extern "C" fn sherd_orient_options_set_target_vertex_count(options: *
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_orient_options_set_smoothing_iterations(options: *mut SherdOrientOptions, iterations: usize) -> SherdStatus {
-    set("sherd_orient_options_set_smoothing_iterations", options, |builder| {
-        builder.options.smoothing_iterations = at_most(iterations, crate::orient::MAX_SMOOTHING_ITERATIONS, "iterations")?;
-        Ok(())
+    assign("sherd_orient_options_set_smoothing_iterations", options, |o| &mut o.smoothing_iterations, || {
+        at_most(iterations, crate::orient::MAX_SMOOTHING_ITERATIONS, "iterations")
     })
 }
 
@@ -183,13 +230,12 @@ pub unsafe extern "C" fn sherd_orient_options_set_smoothing_iterations(options: 
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_orient_options_set_opposite_normal_confidence(options: *mut SherdOrientOptions, confidence: f64) -> SherdStatus {
-    set("sherd_orient_options_set_opposite_normal_confidence", options, |builder| {
-        builder.options.opposite_normal_confidence = match confidence {
-            0.0 => None,
-            c if c > 0.0 && c < 1.0 => Some(c),
-            c => return Err(Failure::invalid(format!("`confidence` must be 0 or in (0, 1), got {c}"))),
-        };
-        Ok(())
+    assign("sherd_orient_options_set_opposite_normal_confidence", options, |o| &mut o.opposite_normal_confidence, || {
+        match confidence {
+            0.0 => Ok(None),
+            c if c > 0.0 && c < 1.0 => Ok(Some(c)),
+            c => Err(Failure::invalid(format!("`confidence` must be 0 (no test) or in (0, 1), got {c}"))),
+        }
     })
 }
 
@@ -227,9 +273,8 @@ pub unsafe extern "C" fn sherd_manual_options_free(options: *mut SherdManualOpti
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_manual_options_set_keep_fraction(options: *mut SherdManualOptions, keep_fraction: f64) -> SherdStatus {
-    set("sherd_manual_options_set_keep_fraction", options, |builder| {
-        builder.options.keep_fraction = fraction(keep_fraction, "keep_fraction")?;
-        Ok(())
+    assign("sherd_manual_options_set_keep_fraction", options, |o| &mut o.keep_fraction, || {
+        fraction(keep_fraction, "keep_fraction")
     })
 }
 
@@ -240,10 +285,8 @@ pub unsafe extern "C" fn sherd_manual_options_set_keep_fraction(options: *mut Sh
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_manual_options_set_max_pick_distance_mm(options: *mut SherdManualOptions, distance_mm: f64) -> SherdStatus {
-    set("sherd_manual_options_set_max_pick_distance_mm", options, |builder| {
-        builder.options.max_pick_distance_mm =
-            if distance_mm == 0.0 { None } else { Some(finite_positive(distance_mm, "distance_mm")?) };
-        Ok(())
+    assign("sherd_manual_options_set_max_pick_distance_mm", options, |o| &mut o.max_pick_distance_mm, || {
+        positive_or_default(distance_mm, "distance_mm")
     })
 }
 
@@ -280,10 +323,7 @@ pub unsafe extern "C" fn sherd_refine_options_free(options: *mut SherdRefineOpti
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_refine_options_set_criterion(options: *mut SherdRefineOptions, criterion: u32) -> SherdStatus {
-    set("sherd_refine_options_set_criterion", options, |builder| {
-        builder.options.criterion = SherdCriterion::parse(criterion)?;
-        Ok(())
-    })
+    assign("sherd_refine_options_set_criterion", options, |o| &mut o.criterion, || SherdCriterion::parse(criterion))
 }
 
 /// The surface: a `SHERD_SURFACE_*` value; others give `SHERD_STATUS_INVALID_ARGUMENT`.
@@ -292,10 +332,7 @@ pub unsafe extern "C" fn sherd_refine_options_set_criterion(options: *mut SherdR
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_refine_options_set_surface(options: *mut SherdRefineOptions, surface: u32) -> SherdStatus {
-    set("sherd_refine_options_set_surface", options, |builder| {
-        builder.options.surface = SherdSurface::parse(surface)?;
-        Ok(())
-    })
+    assign("sherd_refine_options_set_surface", options, |o| &mut o.surface, || SherdSurface::parse(surface))
 }
 
 /// Number of horizontal sections (at most 10000); 0 lets the library choose from the
@@ -305,10 +342,9 @@ pub unsafe extern "C" fn sherd_refine_options_set_surface(options: *mut SherdRef
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_refine_options_set_section_count(options: *mut SherdRefineOptions, section_count: usize) -> SherdStatus {
-    set("sherd_refine_options_set_section_count", options, |builder| {
+    assign("sherd_refine_options_set_section_count", options, |o| &mut o.section_count, || {
         let section_count = at_most(section_count, crate::refine::MAX_SECTION_COUNT, "section_count")?;
-        builder.options.section_count = (section_count > 0).then_some(section_count);
-        Ok(())
+        Ok((section_count > 0).then_some(section_count))
     })
 }
 
@@ -319,13 +355,11 @@ pub unsafe extern "C" fn sherd_refine_options_set_section_count(options: *mut Sh
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_refine_options_set_search_bound_deg(options: *mut SherdRefineOptions, bound_deg: f64) -> SherdStatus {
-    set("sherd_refine_options_set_search_bound_deg", options, |builder| {
-        let bound = finite_positive(bound_deg, "bound_deg")?;
-        if bound >= 90.0 {
-            return Err(Failure::invalid(format!("`bound_deg` must be below 90, got {bound}")));
+    assign("sherd_refine_options_set_search_bound_deg", options, |o| &mut o.search_bound_deg, || {
+        match finite_positive(bound_deg, "bound_deg")? {
+            bound if bound < 90.0 => Ok(bound),
+            bound => Err(Failure::invalid(format!("`bound_deg` must be below 90, got {bound}"))),
         }
-        builder.options.search_bound_deg = bound;
-        Ok(())
     })
 }
 
@@ -367,9 +401,8 @@ pub unsafe extern "C" fn sherd_measure_options_set_refine_options(
     options: *mut SherdMeasureOptions,
     refine_options: *const SherdRefineOptions,
 ) -> SherdStatus {
-    set("sherd_measure_options_set_refine_options", options, |builder| {
-        builder.options.refine = unsafe { borrow(refine_options, "refine_options") }?.options.clone();
-        Ok(())
+    assign("sherd_measure_options_set_refine_options", options, |o| &mut o.refine, || {
+        Ok(unsafe { borrow(refine_options, "refine_options") }?.options.clone())
     })
 }
 
@@ -380,10 +413,8 @@ pub unsafe extern "C" fn sherd_measure_options_set_refine_options(
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_measure_options_set_bootstrap_samples(options: *mut SherdMeasureOptions, samples: usize) -> SherdStatus {
-    set("sherd_measure_options_set_bootstrap_samples", options, |builder| {
-        builder.options.bootstrap.samples =
-            at_most(samples, crate::refine::uncertainty::MAX_BOOTSTRAP_SAMPLES, "samples")?;
-        Ok(())
+    assign("sherd_measure_options_set_bootstrap_samples", options, |o| &mut o.bootstrap.samples, || {
+        at_most(samples, crate::refine::uncertainty::MAX_BOOTSTRAP_SAMPLES, "samples")
     })
 }
 
@@ -393,10 +424,7 @@ pub unsafe extern "C" fn sherd_measure_options_set_bootstrap_samples(options: *m
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_measure_options_set_bootstrap_seed(options: *mut SherdMeasureOptions, seed: u64) -> SherdStatus {
-    set("sherd_measure_options_set_bootstrap_seed", options, |builder| {
-        builder.options.bootstrap.seed = seed;
-        Ok(())
-    })
+    assign("sherd_measure_options_set_bootstrap_seed", options, |o| &mut o.bootstrap.seed, || Ok(seed))
 }
 
 /// Confidence level of the intervals, in (0, 1) (default 0.95).
@@ -405,12 +433,8 @@ pub unsafe extern "C" fn sherd_measure_options_set_bootstrap_seed(options: *mut 
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_measure_options_set_confidence(options: *mut SherdMeasureOptions, confidence: f64) -> SherdStatus {
-    set("sherd_measure_options_set_confidence", options, |builder| {
-        if !(confidence > 0.0 && confidence < 1.0) {
-            return Err(Failure::invalid(format!("`confidence` must be in (0, 1), got {confidence}")));
-        }
-        builder.options.bootstrap.confidence = confidence;
-        Ok(())
+    assign("sherd_measure_options_set_confidence", options, |o| &mut o.bootstrap.confidence, || {
+        confidence_level(confidence, "confidence")
     })
 }
 
@@ -469,6 +493,17 @@ pub enum SherdRegularity {
     IdealVessel = 1,
 }
 
+impl SherdRegularity {
+    /// The map for a value from the host.
+    pub(crate) fn parse(value: u32) -> FfiResult<RegularityKind> {
+        match value {
+            0 => Ok(RegularityKind::AxisDistance),
+            1 => Ok(RegularityKind::IdealVessel),
+            other => Err(Failure::invalid(format!("`regularity` {other} is not a SHERD_REGULARITY_* value (0 or 1)"))),
+        }
+    }
+}
+
 /// Applies `change` to a copy of the drawing options and keeps it only when the drawing
 /// layer accepts the result, so that a refused value leaves the options as they were.
 fn set_checked(function: &str, options: *mut SherdDrawOptions, change: impl FnOnce(&mut DrawOptions)) -> SherdStatus {
@@ -508,7 +543,7 @@ pub unsafe extern "C" fn sherd_draw_options_free(options: *mut SherdDrawOptions)
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_draw_options_set_style(options: *mut SherdDrawOptions, styles: u32) -> SherdStatus {
-    set("sherd_draw_options_set_style", options, |builder| {
+    assign("sherd_draw_options_set_style", options, |o| &mut o.style, || {
         const ALL: u32 = 63;
         if styles == 0 || styles & !ALL != 0 {
             return Err(Failure::invalid(format!(
@@ -516,15 +551,14 @@ pub unsafe extern "C" fn sherd_draw_options_set_style(options: *mut SherdDrawOpt
             )));
         }
         let has = |style: SherdStyle| styles & style as u32 != 0;
-        builder.options.style = Style {
+        Ok(Style {
             linear: has(SherdStyle::Linear),
             colour: has(SherdStyle::Colour),
             light: has(SherdStyle::Light),
             occlusion: has(SherdStyle::Occlusion),
             stipple: has(SherdStyle::Stipple),
             regularity: has(SherdStyle::Regularity),
-        };
-        Ok(())
+        })
     })
 }
 
@@ -553,14 +587,12 @@ pub unsafe extern "C" fn sherd_draw_options_set_dpi(options: *mut SherdDrawOptio
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_draw_options_set_section_angle_rad(options: *mut SherdDrawOptions, angle_rad: f64) -> SherdStatus {
-    set("sherd_draw_options_set_section_angle_rad", options, |builder| {
+    assign("sherd_draw_options_set_section_angle_rad", options, |o| &mut o.section_angle_rad, || {
         if angle_rad.is_nan() {
-            builder.options.section_angle_rad = None;
-            return Ok(());
+            return Ok(None);
         }
         crate::profile::section::check_angle(angle_rad)?;
-        builder.options.section_angle_rad = Some(angle_rad);
-        Ok(())
+        Ok(Some(angle_rad))
     })
 }
 
@@ -570,13 +602,10 @@ pub unsafe extern "C" fn sherd_draw_options_set_section_angle_rad(options: *mut 
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_draw_options_set_section_fill(options: *mut SherdDrawOptions, fill: u32) -> SherdStatus {
-    set("sherd_draw_options_set_section_fill", options, |builder| {
-        builder.options.section_fill = match fill {
-            0 => SectionFill::Black,
-            1 => SectionFill::Hatched,
-            other => return Err(Failure::invalid(format!("`fill` {other} is not a SHERD_SECTION_FILL_* value (0 or 1)"))),
-        };
-        Ok(())
+    assign("sherd_draw_options_set_section_fill", options, |o| &mut o.section_fill, || match fill {
+        0 => Ok(SectionFill::Black),
+        1 => Ok(SectionFill::Hatched),
+        other => Err(Failure::invalid(format!("`fill` {other} is not a SHERD_SECTION_FILL_* value (0 or 1)"))),
     })
 }
 
@@ -586,13 +615,10 @@ pub unsafe extern "C" fn sherd_draw_options_set_section_fill(options: *mut Sherd
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_draw_options_set_placement(options: *mut SherdDrawOptions, placement: u32) -> SherdStatus {
-    set("sherd_draw_options_set_placement", options, |builder| {
-        builder.options.placement = match placement {
-            0 => Placement::Beside,
-            1 => Placement::TrueDistance,
-            other => return Err(Failure::invalid(format!("`placement` {other} is not a SHERD_PLACEMENT_* value (0 or 1)"))),
-        };
-        Ok(())
+    assign("sherd_draw_options_set_placement", options, |o| &mut o.placement, || match placement {
+        0 => Ok(Placement::Beside),
+        1 => Ok(Placement::TrueDistance),
+        other => Err(Failure::invalid(format!("`placement` {other} is not a SHERD_PLACEMENT_* value (0 or 1)"))),
     })
 }
 
@@ -602,14 +628,7 @@ pub unsafe extern "C" fn sherd_draw_options_set_placement(options: *mut SherdDra
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_draw_options_set_regularity(options: *mut SherdDrawOptions, regularity: u32) -> SherdStatus {
-    set("sherd_draw_options_set_regularity", options, |builder| {
-        builder.options.regularity = match regularity {
-            0 => RegularityKind::AxisDistance,
-            1 => RegularityKind::IdealVessel,
-            other => return Err(Failure::invalid(format!("`regularity` {other} is not a SHERD_REGULARITY_* value (0 or 1)"))),
-        };
-        Ok(())
-    })
+    assign("sherd_draw_options_set_regularity", options, |o| &mut o.regularity, || SherdRegularity::parse(regularity))
 }
 
 /// Whether the interior view is drawn left of the axis, and whether the outer profile is
@@ -632,13 +651,11 @@ pub unsafe extern "C" fn sherd_draw_options_set_views(options: *mut SherdDrawOpt
 /// `options` must be a live handle; `title` NULL or a NUL-terminated string.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_draw_options_set_title(options: *mut SherdDrawOptions, title: *const std::ffi::c_char) -> SherdStatus {
-    set("sherd_draw_options_set_title", options, |builder| {
-        builder.options.title = if title.is_null() {
-            None
-        } else {
-            let text = unsafe { std::ffi::CStr::from_ptr(title) };
-            Some(text.to_str().map_err(|e| Failure::invalid(format!("`title` is not UTF-8: {e}")))?.to_string())
-        };
-        Ok(())
+    assign("sherd_draw_options_set_title", options, |o| &mut o.title, || {
+        if title.is_null() {
+            return Ok(None);
+        }
+        let text = unsafe { std::ffi::CStr::from_ptr(title) };
+        Ok(Some(text.to_str().map_err(|e| Failure::invalid(format!("`title` is not UTF-8: {e}")))?.to_string()))
     })
 }

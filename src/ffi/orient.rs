@@ -71,8 +71,8 @@ fn write_matrix(transform: &nalgebra::Isometry3<f64>, out_matrix: *mut f64) -> F
 /// `reference_point` (3 doubles; usually the fragment's centroid) lands on the +x
 /// half-plane, where the drawing shows the exterior.
 ///
-/// Row-major is numpy's and Blender's `Matrix(rows)` layout; OpenGL and VCG hosts take
-/// the transpose.
+/// Row-major is numpy's, Blender's `Matrix(rows)` and VCG's `Matrix44` (MeshLab's layer
+/// transform, `m[row][column]`) layout; OpenGL's column-major arrays take the transpose.
 ///
 /// # Safety
 /// `axis` must point to a `SherdAxis` with `size` set; `reference_point` to 3 doubles;

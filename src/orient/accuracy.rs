@@ -53,6 +53,10 @@ pub struct FragmentOutcome {
     pub direction_strength: f64,
     /// Which cue set the sense.
     pub direction_cue: String,
+    /// The figures of each sense cue.
+    pub sense_cues: super::direction::SenseCues,
+    /// The vessel family the fragment came from.
+    pub shape: crate::synth::VesselShape,
     /// Milliseconds the orientation took.
     pub elapsed_ms: f64,
 }
@@ -95,6 +99,8 @@ pub fn evaluate(id: String, sherd: &SynthSherd, options: &OrientOptions) -> Frag
         inlier_fraction: 0.0,
         direction_strength: 0.0,
         direction_cue: String::new(),
+        sense_cues: Default::default(),
+        shape: sherd.truth.vessel.shape,
         elapsed_ms,
     };
     match result {
@@ -128,6 +134,7 @@ fn fill(outcome: &mut FragmentOutcome, sherd: &SynthSherd, orientation: &Orienta
     outcome.inlier_fraction = report.inlier_fraction;
     outcome.direction_strength = report.direction_strength;
     outcome.direction_cue = report.direction_cue.clone();
+    outcome.sense_cues = report.sense_cues.clone();
 }
 
 /// The summary figures of a set of outcomes.

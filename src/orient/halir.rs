@@ -19,6 +19,7 @@
 use argmin::core::{CostFunction, Executor};
 use argmin::solver::neldermead::NelderMead;
 use nalgebra::{Matrix2, Vector2};
+use rayon::prelude::*;
 
 use super::line_complex::{CenteredLines, Hypothesis};
 use super::mm_regression::{m_scale, m_step_cost, m_step_weights};
@@ -72,32 +73,19 @@ impl<'a> HalirProblem<'a> {
     /// The axis point (perpendicular to `direction`, closest to the centroid) minimising the
     /// weighted squared residuals, and the weighted mean squared residual.
     pub fn solve_point(&self, direction: &Vector) -> (Vector, f64) {
-        let (e1, e2) = perpendicular_frame(direction);
-        let mut normal = Matrix2::zeros();
-        let mut rhs = Vector2::zeros();
-        let (mut qq, mut total) = (0.0, 0.0);
-        for &i in &self.indices {
-            let w = self.weights[i];
-            if w <= 0.0 {
-                continue;
-            }
-            let (a, q) = self.row(i, direction);
-            let x = Vector2::new(a.dot(&e1), a.dot(&e2));
-            normal += x * x.transpose() * w;
-            rhs += x * (q * w);
-            qq += q * q * w;
-            total += w;
-        }
-        if !(total > 0.0) {
-            return (Vector::zeros(), f64::INFINITY);
-        }
-        // A tiny ridge keeps the point finite when the lines do not fix it (flat piece);
-        // the verdict reports that case from the point's uncertainty.
-        let ridge = normal.trace() * 1e-9 + 1e-300;
-        let regularised = normal + Matrix2::identity() * ridge;
-        let uv = regularised.try_inverse().map_or(Vector2::zeros(), |inv| inv * rhs);
-        let cost = ((qq - 2.0 * uv.dot(&rhs) + (uv.transpose() * normal * uv)[0]) / total).max(0.0);
-        (e1 * uv.x + e2 * uv.y, cost)
+        let rows = self.indices.iter().map(|&i| (&self.lines.points[i], &self.lines.directions[i], self.weights[i]));
+        solve_point_over(rows, self.kind, direction)
+    }
+
+    /// The lines of the subset with a positive weight, packed side by side: a search
+    /// evaluates the cost hundreds of times over the same lines and weights, and reading
+    /// them in order is what its inner loop is bound by.
+    fn packed(&self) -> Vec<PackedLine> {
+        self.indices
+            .iter()
+            .filter(|&&i| self.weights[i] > 0.0)
+            .map(|&i| PackedLine { point: self.lines.points[i], direction: self.lines.directions[i], weight: self.weights[i] })
+            .collect()
     }
 
     /// Residual of every line (not only the subset) for the axis `(point, direction)`.
@@ -129,7 +117,8 @@ impl<'a> HalirProblem<'a> {
     /// `step_rad`; returns the direction found and its cost.
     pub fn search(&self, start: &Vector, step_rad: f64, max_iterations: u64) -> (Vector, f64) {
         let (e1, e2) = perpendicular_frame(start);
-        let chart = Chart { problem: self, start: *start, e1, e2 };
+        let packed = self.packed();
+        let chart = Chart { lines: &packed, kind: self.kind, start: *start, e1, e2 };
         let step = step_rad.tan();
         let simplex = vec![vec![0.0, 0.0], vec![step, 0.0], vec![0.0, step]];
         let solver = match NelderMead::new(simplex).with_sd_tolerance(1e-12) {
@@ -161,22 +150,78 @@ impl<'a> HalirProblem<'a> {
     }
 }
 
+/// One line of [`HalirProblem::packed`].
+struct PackedLine {
+    point: Vector,
+    direction: Vector,
+    weight: f64,
+}
+
+/// [`HalirProblem::solve_point`] over `(point, line direction, weight)` rows; rows of
+/// weight zero or less are skipped. The sums are accumulated in plain scalars in the
+/// order the rows come, so packed and indexed rows give the same bits.
+#[inline]
+fn solve_point_over<'l>(
+    rows: impl Iterator<Item = (&'l Vector, &'l Vector, f64)>,
+    kind: ResidualKind,
+    direction: &Vector,
+) -> (Vector, f64) {
+    let (e1, e2) = perpendicular_frame(direction);
+    let (mut n00, mut n01, mut n11) = (0.0, 0.0, 0.0);
+    let (mut r0, mut r1) = (0.0, 0.0);
+    let (mut qq, mut total) = (0.0, 0.0);
+    for (point, line_direction, w) in rows {
+        if w <= 0.0 {
+            continue;
+        }
+        // `(A_i, q_i)` with `residual = q_i - A_i·X0` (see `HalirProblem::row`).
+        let mut a = direction.cross(line_direction);
+        if kind == ResidualKind::Geometric {
+            a /= a.norm().max(0.05);
+        }
+        let q = point.dot(&a);
+        let (x0, x1) = (a.dot(&e1), a.dot(&e2));
+        n00 += x0 * x0 * w;
+        n01 += x0 * x1 * w;
+        n11 += x1 * x1 * w;
+        let qw = q * w;
+        r0 += x0 * qw;
+        r1 += x1 * qw;
+        qq += q * q * w;
+        total += w;
+    }
+    if !(total > 0.0) {
+        return (Vector::zeros(), f64::INFINITY);
+    }
+    let normal = Matrix2::new(n00, n01, n01, n11);
+    let rhs = Vector2::new(r0, r1);
+    // A tiny ridge keeps the point finite when the lines do not fix it (flat piece);
+    // the verdict reports that case from the point's uncertainty.
+    let ridge = normal.trace() * 1e-9 + 1e-300;
+    let regularised = normal + Matrix2::identity() * ridge;
+    let uv = regularised.try_inverse().map_or(Vector2::zeros(), |inv| inv * rhs);
+    let cost = ((qq - 2.0 * uv.dot(&rhs) + (uv.transpose() * normal * uv)[0]) / total).max(0.0);
+    (e1 * uv.x + e2 * uv.y, cost)
+}
+
 /// The gnomonic chart around a start direction: parameters `(u, v)` map to
 /// `normalize(start + u e1 + v e2)`, smooth and without poles within 90 degrees.
-struct Chart<'p, 'a> {
-    problem: &'p HalirProblem<'a>,
+struct Chart<'p> {
+    lines: &'p [PackedLine],
+    kind: ResidualKind,
     start: Vector,
     e1: Vector,
     e2: Vector,
 }
 
-impl CostFunction for Chart<'_, '_> {
+impl CostFunction for Chart<'_> {
     type Param = Vec<f64>;
     type Output = f64;
 
     fn cost(&self, param: &Self::Param) -> Result<f64, argmin::core::Error> {
         let direction = (self.start + self.e1 * param[0] + self.e2 * param[1]).normalize();
-        Ok(self.problem.solve_point(&direction).1)
+        let rows = self.lines.iter().map(|l| (&l.point, &l.direction, l.weight));
+        Ok(solve_point_over(rows, self.kind, &direction).1)
     }
 }
 
@@ -263,8 +308,9 @@ pub fn multi_start(lines: &CenteredLines, seeds: &[Hypothesis], options: &HalirO
     problem.indices = stride_subset(lines.len(), options.search_subsample);
     let mut starts: Vec<Vector> = seeds.iter().map(|h| h.direction).collect();
     starts.extend(hemisphere_starts(options.hemisphere_start_count));
+    // The searches are independent: one per core, results in the order of the starts.
     let mut found: Vec<Hypothesis> = starts
-        .iter()
+        .par_iter()
         .map(|start| {
             let (direction, cost) = problem.search(start, 0.15, 80);
             let (point, _) = problem.solve_point(&direction);

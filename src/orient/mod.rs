@@ -138,10 +138,12 @@ pub struct OrientReport {
     pub raw_angle_sigma_deg: f64,
     /// Angle to the best competing axis, degrees, and its cost relative to the best.
     pub competitor: Option<(f64, f64)>,
-    /// The cue that set the sense base to rim, and its strength.
+    /// The cue that set the sense base to rim, or why none could.
     pub direction_cue: String,
-    /// Strength of that cue (see [`direction::DirectionEvidence`]).
+    /// Confidence in the sense base to rim, 0 to 1 (see [`direction::DirectionEvidence`]).
     pub direction_strength: f64,
+    /// The figures of each sense cue.
+    pub sense_cues: direction::SenseCues,
     /// Radius of the picked circle (manual), millimetres.
     pub circle_radius_mm: Option<f64>,
     /// Wall-clock milliseconds per step.
@@ -150,6 +152,30 @@ pub struct OrientReport {
 
 /// The automatic pre-orientation of a mesh or of a point cloud with normals.
 pub fn orient_automatic(mesh: &Mesh, options: &OrientOptions) -> Result<Orientation> {
+    check_orientable(mesh, options)?;
+    let clock = Instant::now();
+    let decimated = decimated_copy(mesh, options)?;
+    let decimation_ms = clock.elapsed().as_secs_f64() * 1e3;
+    let mut orientation = orient_automatic_with_decimated(mesh, decimated.as_ref(), options)?;
+    orientation.report.timings_ms.insert(0, ("decimation".into(), decimation_ms));
+    Ok(orientation)
+}
+
+/// The decimated copy of `mesh` the automatic pre-orientation works on, before it is
+/// smoothed: about two faces per wanted vertex (quadric edge collapse). `None` when the
+/// mesh is a point cloud or has no more faces than that already. The pipeline refines
+/// and bootstraps on the same copy, so that a large scan is decimated once.
+pub fn decimated_copy(mesh: &Mesh, options: &OrientOptions) -> Result<Option<Mesh>> {
+    check_options(options)?;
+    if mesh.is_point_cloud() || mesh.face_count() <= 2 * options.target_vertex_count {
+        return Ok(None);
+    }
+    crate::mesh::decimate::decimate_shape(mesh, 2 * options.target_vertex_count).map(Some)
+}
+
+/// [`orient_automatic`] given `decimated`, the [`decimated_copy`] of `mesh` with the same
+/// options (made beforehand by a caller that uses it again).
+pub fn orient_automatic_with_decimated(mesh: &Mesh, decimated: Option<&Mesh>, options: &OrientOptions) -> Result<Orientation> {
     let started = Instant::now();
     let mut timings = Vec::new();
     let mut lap = |name: &str, since: &mut Instant| {
@@ -157,21 +183,8 @@ pub fn orient_automatic(mesh: &Mesh, options: &OrientOptions) -> Result<Orientat
         *since = Instant::now();
     };
     let mut clock = started;
-    if options.smoothing_iterations > MAX_SMOOTHING_ITERATIONS {
-        return Err(Error::InvalidArgument(format!(
-            "smoothing_iterations must be at most {MAX_SMOOTHING_ITERATIONS}, got {}",
-            options.smoothing_iterations
-        )));
-    }
-    if options.target_vertex_count == 0 {
-        return Err(Error::InvalidArgument("target_vertex_count must be at least 1".into()));
-    }
-    mesh.validate()?;
-    if mesh.positions.is_empty() {
-        return Err(Error::DegenerateGeometry("the mesh is empty: no vertex to orient".into()));
-    }
-    reject_coplanar(mesh)?;
-    let working = working_copy(mesh, options)?;
+    check_orientable(mesh, options)?;
+    let working = working_copy(mesh, decimated, options)?;
     lap("working copy", &mut clock);
     let all_lines = NormalLines::from_mesh(&working)?;
     let mut report = OrientReport {
@@ -214,12 +227,13 @@ pub fn orient_automatic(mesh: &Mesh, options: &OrientOptions) -> Result<Orientat
     report.residual_scale_mm = fit.scale * scale_mm;
     report.raw_angle_sigma_deg = fit.angle_sigma_rad.to_degrees();
     report.competitor = verdict::best_competitor(&fit);
-    let evidence = direction::direction_evidence(&lines, &inliers, &axis);
+    let evidence = direction::direction_evidence(&lines, &inliers, &all_lines.points, &axis);
     if evidence.score < 0.0 {
         axis = axis.flipped();
     }
     report.direction_cue = evidence.cue;
     report.direction_strength = evidence.score.abs();
+    report.sense_cues = evidence.cues;
     axis = axis.normalized(&lines.centroid());
     let mut radii: Vec<f64> = lines.points.iter().map(|p| axis.distance_to(p)).collect();
     radii.sort_by(f64::total_cmp);
@@ -235,6 +249,30 @@ pub fn orient_automatic(mesh: &Mesh, options: &OrientOptions) -> Result<Orientat
     report.timings_ms = timings;
     let kept_vertex_count = lines.len();
     Ok(Orientation { axis, verdict, angle_uncertainty_deg, position_uncertainty_mm, kept_vertex_count, report })
+}
+
+/// Options in their bounds and a valid, non-empty mesh whose vertices are not all in one plane.
+fn check_orientable(mesh: &Mesh, options: &OrientOptions) -> Result<()> {
+    check_options(options)?;
+    mesh.validate()?;
+    if mesh.positions.is_empty() {
+        return Err(Error::DegenerateGeometry("the mesh is empty: no vertex to orient".into()));
+    }
+    reject_coplanar(mesh)
+}
+
+/// Option values that would make orientation run for ever or decimate to nothing.
+fn check_options(options: &OrientOptions) -> Result<()> {
+    if options.smoothing_iterations > MAX_SMOOTHING_ITERATIONS {
+        return Err(Error::InvalidArgument(format!(
+            "smoothing_iterations must be at most {MAX_SMOOTHING_ITERATIONS}, got {}",
+            options.smoothing_iterations
+        )));
+    }
+    if options.target_vertex_count == 0 {
+        return Err(Error::InvalidArgument("target_vertex_count must be at least 1".into()));
+    }
+    Ok(())
 }
 
 /// All vertices in one plane: no thickness and no curvature, nothing to orient (an error,
@@ -270,8 +308,9 @@ fn unoriented(mesh: &Mesh, reason: String, report: OrientReport, kept: usize) ->
 }
 
 /// The working copy the paper orients on: decimated to about the target vertex count
-/// and smoothed (meshes); point clouds are thinned by an even stride.
-fn working_copy(mesh: &Mesh, options: &OrientOptions) -> Result<Mesh> {
+/// (`decimated`, from [`decimated_copy`]) and smoothed (meshes); point clouds are thinned
+/// by an even stride.
+fn working_copy(mesh: &Mesh, decimated: Option<&Mesh>, options: &OrientOptions) -> Result<Mesh> {
     if mesh.is_point_cloud() {
         if mesh.normals.is_none() {
             return Err(Error::InvalidArgument(
@@ -296,10 +335,11 @@ fn working_copy(mesh: &Mesh, options: &OrientOptions) -> Result<Mesh> {
     // A mesh already coarser than the target is not smoothed: its edges are long next to
     // the wall thickness and smoothing would round the whole sherd (measured: rim pieces
     // of 2 mm cells went 80 degrees wrong), while its normals are not noisy at that scale.
-    let decimated = mesh.face_count() > 2 * options.target_vertex_count;
-    let mut working =
-        if decimated { crate::mesh::decimate::decimate(mesh, 2 * options.target_vertex_count)? } else { mesh.clone() };
-    if decimated && options.smoothing_iterations > 0 {
+    let mut working = match decimated {
+        Some(decimated) => decimated.clone(),
+        None => mesh.clone(),
+    };
+    if decimated.is_some() && options.smoothing_iterations > 0 {
         let smoothing = crate::mesh::smooth::SmoothOptions {
             iterations: options.smoothing_iterations,
             ..Default::default()
@@ -386,7 +426,7 @@ pub fn orient_from_three_points(mesh: &Mesh, points: [Point; 3], options: &Manua
         &axis,
         &surfaces::SegmentOptions { max_line_distance_mm: None, keep_fraction: Some(options.keep_fraction) },
     );
-    let evidence = direction::direction_evidence(&lines, &keep, &axis);
+    let evidence = direction::direction_evidence(&lines, &keep, &lines.points, &axis);
     if evidence.score < 0.0 {
         axis = axis.flipped();
     }
@@ -399,6 +439,7 @@ pub fn orient_from_three_points(mesh: &Mesh, points: [Point; 3], options: &Manua
         opposite_filter: "not applied (manual)".into(),
         direction_cue: evidence.cue,
         direction_strength: evidence.score.abs(),
+        sense_cues: evidence.cues,
         circle_radius_mm: Some(circle.radius_mm),
         ..Default::default()
     };

@@ -17,7 +17,7 @@ use crate::orient::Axis;
 use crate::refine::sections::{quantile, sector_angle_rad, vertical_sections, PreparedSurface, Skin, Surface};
 use crate::refine::tangent::Edge;
 use crate::refine::uncertainty::{angle_interval_deg, bootstrap_axes, value_interval, BootstrapOptions};
-use crate::refine::{detect_edges, RefineOptions};
+use crate::refine::{detect_edges_over, RefineOptions, EDGE_LEVEL_FRACTION};
 
 /// Settings of [`measure`].
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -82,6 +82,11 @@ pub struct Measurements {
     pub notes: Vec<String>,
 }
 
+/// A rim is measured when it is level over this share of the vertical sections (a rim
+/// preserved over a third of a sherd whose other end is a rising break line). Bases keep
+/// the stricter share of the refinement: a horizontal break low on a rim sherd is as
+/// level over a third of the arc as a base.
+const MIN_MEASURED_RIM_FRACTION: f64 = 0.3;
 /// Vertical sections used to find the rim and base edges.
 const EDGE_SECTIONS: usize = 24;
 /// Points this close below the top (above the bottom) of their section belong to the rim (base) edge, mm.
@@ -192,6 +197,13 @@ fn capacity_litres(outlines: &[Vec<[f64; 2]>], top: f64) -> Option<f64> {
 
 /// Measures `mesh` oriented by `axis` (refined as `options.refine` says).
 pub fn measure(mesh: &Mesh, axis: &Axis, options: &MeasureOptions) -> Measurements {
+    measure_with_bootstrap_mesh(mesh, mesh, axis, options)
+}
+
+/// [`measure`], with the bootstrap of the intervals refining the axis on
+/// `bootstrap_mesh` (a decimated copy of `mesh`: the pipeline's, for large scans) while
+/// every measurement and its replicates are taken on `mesh` itself.
+pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Axis, options: &MeasureOptions) -> Measurements {
     let mut measurements = Measurements::default();
     if mesh.positions.len() < 10 {
         measurements.notes.push(format!("too few vertices to measure: {}", mesh.positions.len()));
@@ -212,7 +224,7 @@ pub fn measure(mesh: &Mesh, axis: &Axis, options: &MeasureOptions) -> Measuremen
     let (edges, outer_skin): (Vec<Edge>, Vec<bool>) =
         match PreparedSurface::new(mesh, axis, Surface::Both, options.refine.section_count) {
             Ok(surface) => (
-                detect_edges(&surface, &options.refine).into_iter().map(|e| e.edge).collect(),
+                detect_edges_over(&surface, &options.refine, [MIN_MEASURED_RIM_FRACTION, EDGE_LEVEL_FRACTION]).into_iter().map(|e| e.edge).collect(),
                 surface.skins.iter().map(|s| *s == Some(Skin::Outer)).collect(),
             ),
             Err(error) => {
@@ -248,7 +260,7 @@ pub fn measure(mesh: &Mesh, axis: &Axis, options: &MeasureOptions) -> Measuremen
         measurements.notes.push("the profile section is empty".into());
     }
 
-    match bootstrap_axes(mesh, axis, &options.refine, &options.bootstrap) {
+    match bootstrap_axes(bootstrap_mesh, axis, &options.refine, &options.bootstrap) {
         Ok(replicates) if !replicates.is_empty() => {
             measurements.axis_angle_interval_deg = angle_interval_deg(axis, &replicates, &options.bootstrap);
             let replicate_points: Vec<Vec<Point>> = if has_rim || has_base {
@@ -259,8 +271,8 @@ pub fn measure(mesh: &Mesh, axis: &Axis, options: &MeasureOptions) -> Measuremen
             let interval = |estimate: Option<f64>, edge: Edge| {
                 let estimate = estimate?;
                 let values: Vec<f64> = replicate_points.iter().filter_map(|p| edge_radius(p, &outer_skin, edge)).collect();
-                // Scanner noise on the edge points is not resampled: at least 0.2% of the radius.
-                value_interval(estimate, &values, estimate * 0.002, &options.bootstrap).map(|[a, b]| [2.0 * a, 2.0 * b])
+                value_interval(estimate, &values, estimate * options.bootstrap.diameter_floor_fraction, &options.bootstrap)
+                    .map(|[a, b]| [2.0 * a, 2.0 * b])
             };
             measurements.rim_diameter_interval_mm = interval(measurements.rim_radius_mm, Edge::Rim);
             measurements.base_diameter_interval_mm = interval(measurements.base_radius_mm, Edge::Base);

@@ -200,6 +200,17 @@ impl ColorMap {
         self.scale.color((value - self.low) / (self.high - self.low))
     }
 
+    /// Opaque RGBA colours of `values`, one per value.
+    pub fn rgba(&self, values: &[f32]) -> Vec<[u8; 4]> {
+        values
+            .iter()
+            .map(|&v| {
+                let [r, g, b] = self.color(v as f64);
+                [r, g, b, 255]
+            })
+            .collect()
+    }
+
     /// Legend ticks: `count` evenly spaced `(value, colour)` pairs from low to high.
     pub fn legend(&self, count: usize) -> Vec<(f64, [u8; 3])> {
         let count = count.max(2);
@@ -210,6 +221,23 @@ impl ColorMap {
             })
             .collect()
     }
+}
+
+/// The distance-to-axis map (Fig. 7:a) with its colours: radii on the rainbow scale
+/// fitted to them.
+pub fn axis_distance_map(mesh: &Mesh, axis: &Axis) -> (Vec<f32>, ColorMap) {
+    let values = distance_to_axis(mesh, axis);
+    let map = ColorMap::fitted(&values, ColorScale::Rainbow, "distance to axis", "mm");
+    (values, map)
+}
+
+/// The ideal-vessel map (Fig. 7:b) as exports show it: the signed distances of
+/// [`distance_to_ideal_vessel`] on a diverging scale symmetric about 0 (blue where the
+/// surface lies inside the ideal wall, white on it, red where it stands out).
+pub fn ideal_vessel_map(mesh: &Mesh, axis: &Axis, section: &ProfileSection) -> Result<(Vec<f32>, ColorMap)> {
+    let values = distance_to_ideal_vessel(mesh, axis, section)?;
+    let map = ColorMap::fitted(&values, ColorScale::Diverging, "distance to the ideal vessel", "mm");
+    Ok((values, map))
 }
 
 /// A copy of `mesh` carrying `values` as per-vertex quality and their colours under `map`
@@ -224,15 +252,7 @@ pub fn regularity_mesh(mesh: &Mesh, values: &[f32], map: &ColorMap) -> Result<Me
     }
     let mut out = mesh.clone();
     out.quality = Some(values.to_vec());
-    out.colors = Some(
-        values
-            .iter()
-            .map(|&v| {
-                let [r, g, b] = map.color(v as f64);
-                [r, g, b, 255]
-            })
-            .collect(),
-    );
+    out.colors = Some(map.rgba(values));
     Ok(out)
 }
 

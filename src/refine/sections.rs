@@ -9,11 +9,16 @@
 //! jump). Point clouds without faces fall back to slabs of vertices.
 
 use nalgebra::{Isometry3, Rotation3, Vector2};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::mesh::{Mesh, Point, Vector};
 use crate::orient::Axis;
 use crate::{Error, Result};
+
+/// Skin triangles cut by one task of [`PreparedSurface::horizontal_sections`]: small
+/// meshes stay in one or two tasks.
+const TRIANGLES_PER_TASK: usize = 16_384;
 
 /// Which skin of the fragment a criterion uses (the paper's "surface choice").
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -213,6 +218,19 @@ fn skins_by_smooth_regions(mesh: &Mesh, points: &[Point]) -> Vec<Option<Skin>> {
             (b - a).cross(&(c - a))
         })
         .collect();
+    // A region never crosses a face that is neither skin by its own normal (a rounded
+    // rim, a horizontal break): at fine resolution a rounded lip turns so gradually that
+    // neighbouring faces differ by a degree or two, and the inner and outer skins would
+    // join through it into one region whose radial normals cancel out.
+    let face_skins: Vec<Option<Skin>> = mesh
+        .triangles
+        .iter()
+        .zip(&face_normals)
+        .map(|(t, n)| {
+            let centre = Point::from(t.iter().map(|&v| points[v as usize].coords).sum::<Vector>() / 3.0);
+            skin_by_normal(&centre, &n.try_normalize(1e-300)?)
+        })
+        .collect();
     let mut parent: Vec<usize> = (0..mesh.triangles.len()).collect();
     fn root(parent: &mut [usize], mut i: usize) -> usize {
         while parent[i] != i {
@@ -230,7 +248,8 @@ fn skins_by_smooth_regions(mesh: &Mesh, points: &[Point]) -> Vec<Option<Skin>> {
             if let Some(&other) = edges.get(&key) {
                 let (n, m) = (face_normals[face], face_normals[other]);
                 let norms = n.norm() * m.norm();
-                if norms > 0.0 && n.dot(&m) >= cosine_limit * norms {
+                let same_skin = face_skins[face].is_some() && face_skins[face] == face_skins[other];
+                if same_skin && norms > 0.0 && n.dot(&m) >= cosine_limit * norms {
                     let (ra, rb) = (root(&mut parent, face), root(&mut parent, other));
                     parent[ra] = rb;
                 }
@@ -408,28 +427,43 @@ impl PreparedSurface {
         let count = self.section_heights_mm.len();
         let slot = |skin: Skin| if skins.len() == 2 && skin == Skin::Outer { count } else { 0 };
         if self.has_faces() {
+            // Every evaluation of a criterion moves all skin vertices and cuts all skin
+            // triangles: on a large scan this is the whole cost of refinement, so it runs
+            // on all cores, over contiguous runs of triangles whose cuts are appended in
+            // their order (the sections are the same, point for point, as in one pass).
             let moved: Vec<Option<Point>> =
-                self.points.iter().zip(&self.skins).map(|(p, s)| s.map(|_| frame.apply(p))).collect();
+                self.points.par_iter().zip(self.skins.par_iter()).map(|(p, s)| s.map(|_| frame.apply(p))).collect();
             let first = self.section_heights_mm[0];
             let spacing = if count > 1 { self.section_heights_mm[1] - first } else { 1.0 };
-            for (triangle, skin) in &self.skin_triangles {
-                let corners = triangle.map(|v| moved[v as usize].expect("skin triangles have skin vertices"));
-                let low = corners.iter().map(|c| c.z).fold(f64::INFINITY, f64::min);
-                let high = corners.iter().map(|c| c.z).fold(f64::NEG_INFINITY, f64::max);
-                let first_index = (((low - first) / spacing).ceil().max(0.0)) as usize;
-                let mut index = first_index;
-                while index < count && self.section_heights_mm[index] <= high {
-                    let h = self.section_heights_mm[index];
-                    if let Some((a, b)) = cut_triangle(&corners, h) {
-                        let length = (a[0] - b[0]).hypot(a[1] - b[1]);
-                        if length > 0.0 {
-                            let section = &mut sections[slot(*skin) + index];
-                            section.points.push([(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0]);
-                            section.weights.push(length);
+            let cuts: Vec<Vec<(usize, [f64; 2], f64)>> = self
+                .skin_triangles
+                .par_chunks(TRIANGLES_PER_TASK)
+                .map(|run| {
+                    let mut cuts = Vec::new();
+                    for (triangle, skin) in run {
+                        let corners = triangle.map(|v| moved[v as usize].expect("skin triangles have skin vertices"));
+                        let low = corners.iter().map(|c| c.z).fold(f64::INFINITY, f64::min);
+                        let high = corners.iter().map(|c| c.z).fold(f64::NEG_INFINITY, f64::max);
+                        let first_index = (((low - first) / spacing).ceil().max(0.0)) as usize;
+                        let mut index = first_index;
+                        while index < count && self.section_heights_mm[index] <= high {
+                            let h = self.section_heights_mm[index];
+                            if let Some((a, b)) = cut_triangle(&corners, h) {
+                                let length = (a[0] - b[0]).hypot(a[1] - b[1]);
+                                if length > 0.0 {
+                                    cuts.push((slot(*skin) + index, [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0], length));
+                                }
+                            }
+                            index += 1;
                         }
                     }
-                    index += 1;
-                }
+                    cuts
+                })
+                .collect();
+            for (section_index, point, length) in cuts.into_iter().flatten() {
+                let section = &mut sections[section_index];
+                section.points.push(point);
+                section.weights.push(length);
             }
         } else {
             for (p, skin) in self.skin_points_in(frame) {

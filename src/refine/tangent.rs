@@ -103,6 +103,54 @@ impl TangentObjective {
     }
 }
 
+/// Half-height of the band about the median level extreme that the plane of
+/// [`TangentObjective::plane_tilts`] goes through, mm.
+const PLANE_BAND_MM: f64 = 0.5;
+
+/// Turns `(tilt_x, tilt_y)` of the axis perpendicular to the plane `z = c + a x + b y`.
+fn tilts_of_plane(a: f64, b: f64) -> [f64; 2] {
+    // direction = Ry(ty) Rx(tx) z = (sin ty cos tx, -sin tx, cos ty cos tx) along (-a, -b, 1).
+    let norm = (a * a + b * b + 1.0).sqrt();
+    [(b / norm).asin(), (-a).atan2(1.0)]
+}
+
+impl TangentObjective {
+    /// The least-squares plane through the level extremes (within [`PLANE_BAND_MM`] of the
+    /// median of those within the tolerance of the top) under the axis `parameters`, each section weighted by `weights` (all 1 when
+    /// `None`), as the tilts of the axis perpendicular to it. `None` when fewer than
+    /// three sections with weight carry level extremes, or when they are collinear.
+    pub fn plane_tilts(&self, parameters: &AxisParameters, weights: Option<&[f64]>) -> Option<[f64; 2]> {
+        let points = self.extreme_points(&CandidateFrame::new(parameters));
+        let extreme = match self.edge {
+            Edge::Rim => points.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max),
+            Edge::Base => points.iter().map(|p| p.z).fold(f64::INFINITY, f64::min),
+        };
+        // The plane runs through the level set only: a damaged section a millimetre or two
+        // below the rim, inside epsilon, would otherwise tip a plane whose other points lie
+        // near one chord about that chord.
+        let mut near: Vec<f64> = points.iter().map(|p| p.z).filter(|z| (z - extreme).abs() < self.tolerance_mm).collect();
+        let level_height = super::sections::quantile(&mut near, 0.5);
+        let mut normal = nalgebra::Matrix3::<f64>::zeros();
+        let mut right = nalgebra::Vector3::<f64>::zeros();
+        let mut sections = 0;
+        for (index, p) in points.iter().enumerate() {
+            let weight = weights.map_or(1.0, |w| w[index]);
+            if weight <= 0.0 || (p.z - level_height).abs() > PLANE_BAND_MM {
+                continue;
+            }
+            sections += 1;
+            let row = nalgebra::Vector3::new(1.0, p.x, p.y);
+            normal += weight * row * row.transpose();
+            right += weight * row * p.z;
+        }
+        if sections < 3 {
+            return None;
+        }
+        let solution = normal.cholesky()?.solve(&right);
+        solution.iter().all(|v| v.is_finite()).then(|| tilts_of_plane(solution[1], solution[2]))
+    }
+}
+
 impl Objective for TangentObjective {
     fn value(&self, parameters: &AxisParameters) -> f64 {
         let extremes = self.extremes(&CandidateFrame::new(parameters));
@@ -173,12 +221,32 @@ pub fn edge_evidence(
     section_count: usize,
     parameters: &AxisParameters,
 ) -> EdgeEvidence {
+    edge_evidence_anchored(surface, edge, tolerance_mm, section_count, parameters, false)
+}
+
+/// [`edge_evidence`], with the level set hung from the top (rim) or bottom (base)
+/// extreme when `from_top` instead of from the median of all sections: where the rim
+/// survives over a third of the arc, the break lines hold the median and the rim would
+/// count as not level.
+pub fn edge_evidence_anchored(
+    surface: &PreparedSurface,
+    edge: Edge,
+    tolerance_mm: f64,
+    section_count: usize,
+    parameters: &AxisParameters,
+    from_top: bool,
+) -> EdgeEvidence {
     let objective = TangentObjective::new(surface, edge, tolerance_mm, section_count);
     let mut extremes = objective.extremes(&CandidateFrame::new(parameters));
     if extremes.is_empty() {
         return EdgeEvidence { edge, level_fraction: 0.0, spread_mm: f64::INFINITY };
     }
-    let median = super::sections::quantile(&mut extremes, 0.5);
+    let top = match edge {
+        Edge::Rim => extremes.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        Edge::Base => extremes.iter().copied().fold(f64::INFINITY, f64::min),
+    };
+    let mut near_top: Vec<f64> = extremes.iter().copied().filter(|z| (z - top).abs() <= tolerance_mm).collect();
+    let median = super::sections::quantile(if from_top { &mut near_top } else { &mut extremes }, 0.5);
     let level: Vec<f64> = extremes.iter().map(|z| (z - median).abs()).filter(|d| *d <= tolerance_mm).collect();
     let mut deviations = level.clone();
     let spread = if deviations.is_empty() { f64::INFINITY } else { super::sections::quantile(&mut deviations, 0.5) };

@@ -5,10 +5,16 @@
 //! a 95% interval for the axis angle and, through the measurements recomputed on each
 //! resampled axis, for the rim and base diameters.
 //!
+//! For the tangent plane a resample turns the estimate by the change of the
+//! least-squares plane through the level rim (base) extremes of its sections, instead
+//! of searching Eq. 7 again (see [`super::tangent::TangentObjective::plane_tilts`]).
+//!
 //! Neighbouring sections share the vessel's deformation, so resampling them as if they
 //! were independent underestimates the spread; [`BootstrapOptions::spread_factor`]
-//! widens the intervals by the factor that gives 95% coverage on the synthetic corpus
-//! (`examples/refine_accuracy.rs` measures the coverage).
+//! widens the intervals, and floors ([`BootstrapOptions::angle_floor_deg`],
+//! [`BootstrapOptions::diameter_floor_fraction`]) add what no resample shows (a rim's
+//! own tilt, the axis's radial position on a short arc). `examples/refine_accuracy.rs`
+//! measures the coverage.
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -19,7 +25,7 @@ use super::circles::CirclesObjective;
 use super::objective::{minimize, FreeParameters, SearchSettings};
 use super::sections::{quantile, PreparedSurface};
 use super::tangent::TangentObjective;
-use super::{choose_criterion, Criterion, RefineOptions};
+use super::{choose_criterion, place_by_circles, Criterion, RefineOptions};
 use crate::mesh::Mesh;
 use crate::Error;
 use crate::orient::Axis;
@@ -27,6 +33,7 @@ use crate::Result;
 
 /// Settings of the bootstrap.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default)]
 pub struct BootstrapOptions {
     /// Number of resamples; 0 disables the intervals.
     pub samples: usize,
@@ -36,13 +43,33 @@ pub struct BootstrapOptions {
     pub confidence: f64,
     /// Factor widening the bootstrap spread, calibrated on the synthetic corpus.
     pub spread_factor: f64,
+    /// Half-width of the axis interval that resampling cannot show, degrees: a rim is
+    /// never quite perpendicular to the axis (a thrown vessel's rim tilts by up to a
+    /// few tenths of a degree) and every resample shares that tilt.
+    pub angle_floor_deg: f64,
+    /// Half-width of the diameter interval that resampling cannot show, as a fraction of
+    /// the diameter: the ovality of the vessel and the radial position of the axis on a
+    /// short arc.
+    pub diameter_floor_fraction: f64,
 }
 
 impl Default for BootstrapOptions {
     fn default() -> Self {
-        BootstrapOptions { samples: 24, seed: 0x5e4d, confidence: 0.95, spread_factor: 2.0 }
+        BootstrapOptions {
+            samples: 24,
+            seed: 0x5e4d,
+            confidence: 0.95,
+            spread_factor: 2.0,
+            angle_floor_deg: ANGLE_FLOOR_DEG,
+            diameter_floor_fraction: DIAMETER_FLOOR_FRACTION,
+        }
     }
 }
+
+/// Default [`BootstrapOptions::angle_floor_deg`], calibrated on the synthetic corpus.
+const ANGLE_FLOOR_DEG: f64 = 0.5;
+/// Default [`BootstrapOptions::diameter_floor_fraction`], calibrated on the synthetic corpus.
+const DIAMETER_FLOOR_FRACTION: f64 = 0.02;
 
 /// Multinomial resampling weights: `count` draws with replacement among `count` items.
 fn resample_weights(count: usize, rng: &mut impl Rng) -> Vec<f64> {
@@ -89,17 +116,21 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
             let mut start = [0.0; 4];
             let free = match (method, edge) {
                 (Criterion::Tangent, Some(edge)) if options.free != FreeParameters::ShiftsOnly => {
-                    // The estimate is level already: only the fine stage of Eq. 7 is
-                    // repeated (the coarse stage may jump to another set of sections).
-                    let mut tangent =
+                    // The estimate is level already: each resample moves it by the turn of
+                    // the least-squares plane through the level extremes of its sections.
+                    // Repeating the Nelder-Mead search of Eq. 7 instead let a resample of a
+                    // short rim (its sections nearly on one chord) drift about that chord
+                    // to the search bound: intervals of 20 degrees beside others of 0.
+                    let tangent =
                         TangentObjective::new(&surface, edge, options.tangent_tolerance_mm, options.vertical_section_count);
-                    tangent.section_weights = Some(resample_weights(tangent.section_count(), &mut rng));
-                    let tilts = SearchSettings { free: FreeParameters::TiltsOnly, ..settings };
-                    start = minimize(&tangent, start, &tilts).ok()?.parameters;
-                    if !options.tangent_places_by_circles {
-                        return Some(surface.axis_of(&start));
+                    let weights = resample_weights(tangent.section_count(), &mut rng);
+                    let [base_x, base_y] = tangent.plane_tilts(&start, None)?;
+                    let [tilt_x, tilt_y] = tangent.plane_tilts(&start, Some(&weights))?;
+                    start = [tilt_x - base_x, tilt_y - base_y, 0.0, 0.0];
+                    if options.tangent_places_by_circles {
+                        start = place_by_circles(&circles, start, &settings).map_or(start, |(placed, _)| placed);
                     }
-                    FreeParameters::ShiftsOnly
+                    return Some(surface.axis_of(&start));
                 }
                 _ => options.free,
             };
@@ -111,13 +142,14 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
 }
 
 /// The interval `[0, upper]` of the angle between the true and the estimated axis:
-/// the `confidence` quantile of the resampled axes' angles to the estimate, widened.
+/// the `confidence` quantile of the resampled axes' angles to the estimate, widened,
+/// combined with the floor.
 pub fn angle_interval_deg(estimate: &Axis, replicates: &[Axis], bootstrap: &BootstrapOptions) -> Option<[f64; 2]> {
     if replicates.len() < 5 {
         return None;
     }
     let mut angles: Vec<f64> = replicates.iter().map(|a| a.line_angle_to_deg(estimate)).collect();
-    Some([0.0, bootstrap.spread_factor * quantile(&mut angles, bootstrap.confidence)])
+    Some([0.0, (bootstrap.spread_factor * quantile(&mut angles, bootstrap.confidence)).hypot(bootstrap.angle_floor_deg)])
 }
 
 /// A symmetric interval about `estimate`: the `confidence` quantile of the resampled

@@ -1,13 +1,21 @@
-"""The Blender add-on in a real, headless Blender (run by tests/blender/run.sh):
+"""The Blender add-on in a real, headless Blender (run by tests/blender/run.sh), either as
+a script in Blender 3.x:
 
     blender -b --factory-startup --python-exit-code 1 --python tests/blender/test_addon_blender.py
 
-Installs the built zip as a legacy add-on, enables it, and runs every operator through
-bpy.ops on a synthetic sherd with a known axis (and on ../shared/data/dacord/A011.ply when
-present). Any failed assertion exits Blender with status 1."""
+or with pytest where bpy is a Python module (Blender 4.2, pip install bpy):
 
+    python -m pytest tests/blender        (tests/blender/conftest.py installs the add-on)
+
+Installs the built zip (legacy add-on, or extension through Blender's extension
+installer), enables it, and runs every operator through bpy.ops on a synthetic sherd with
+a known axis (and on ../shared/data/dacord/A011.ply when present). As a script, any
+failed assertion exits Blender with status 1."""
+
+import json
 import math
 import os
+import subprocess
 import sys
 import tempfile
 import traceback
@@ -19,13 +27,16 @@ import numpy as np
 from mathutils import Matrix
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tests" / "support"))
+from rim_points import pick_rim_vertices  # noqa: E402 - the path is set just above
 ZIP = Path(os.environ.get("SHERD_BLENDER_ZIP", ROOT / "target" / "blender" / "sherd_blender.zip"))
 REAL_SCAN = ROOT.parent / "shared" / "data" / "dacord" / "A011.ply"
 
 
 def install_addon():
     """Blender 4.2+ (e.g. the bpy wheel): the extension zip with Blender's extension
-    installer; Blender 3.x: the legacy add-on zip."""
+    installer, which installs the sherd wheel inside it; Blender 3.x: the legacy add-on
+    zip with the package vendored. Returns the sherd package the add-on uses."""
     import importlib
     if bpy.app.version >= (4, 2, 0):
         package = Path(os.environ.get("SHERD_EXTENSION_ZIP", ZIP.parent / "sherd_extension.zip"))
@@ -33,18 +44,23 @@ def install_addon():
         assert bpy.ops.extensions.package_install_files(
             filepath=str(package), repo="user_default", enable_on_install=True) == {'FINISHED'}
         module = "bl_ext.user_default.sherd"
+        # The extension's wheel, installed into Blender's own site-packages for extensions.
+        vendored = importlib.import_module("sherd")
+        home = Path(bpy.utils.user_resource('EXTENSIONS')).resolve()
     else:
         assert ZIP.is_file(), f"{ZIP} is missing: run addons/blender/build.sh"
         assert bpy.ops.preferences.addon_install(filepath=str(ZIP), overwrite=True) == {'FINISHED'}
         assert bpy.ops.preferences.addon_enable(module="sherd_blender") == {'FINISHED'}
         module = "sherd_blender"
-    addon = importlib.import_module(module)
+        vendored = importlib.import_module(f"{module}.sherd")
+        home = Path(importlib.import_module(module).__file__).resolve().parent
     operators = importlib.import_module(f"{module}.operators")
-    vendored = importlib.import_module(f"{module}.sherd")
+    assert importlib.import_module(f"{module}.library").sherd() is vendored
     # The bundled library, not one found elsewhere (run.sh unsets SHERD_LIBRARY).
-    assert Path(vendored.__file__).parent.parent == Path(addon.__file__).parent
-    assert (Path(vendored.__file__).parent / "libsherd.so").is_file()
-    print(f"Blender {bpy.app.version_string}: {module} enabled")
+    library = Path(vendored.lib._name).resolve()
+    assert library == Path(vendored.__file__).resolve().parent / "libsherd.so", library
+    assert home in library.parents, f"{library} is not inside {home}"
+    print(f"Blender {bpy.app.version_string}: {module} enabled, library {library}")
     return vendored, operators
 
 
@@ -130,6 +146,105 @@ def stored_measurements_match(obj, vendored, operators):
     return direct, checked
 
 
+class RecordingLayout:
+    """Stands in for a panel's UILayout (a headless Blender draws no UI): records the
+    labels' texts, accepts everything else."""
+
+    def __init__(self, texts=None):
+        self.texts = [] if texts is None else texts
+
+    def label(self, text="", **_):
+        self.texts.append(text)
+
+    def operator(self, *_, **__):
+        return type("OperatorProperties", (), {})()
+
+    def prop(self, *_, **__):
+        pass
+
+    def __getattr__(self, name):  # row, column, box, grid_flow...: a nested layout
+        return lambda *_, **__: RecordingLayout(self.texts)
+
+
+def panel_texts(module):
+    """The texts the Sherd panel shows for the active object."""
+    import importlib
+    panel = importlib.import_module(f"{module}.panel").SHERD_PT_panel
+    layout = RecordingLayout()
+    panel.draw(type("Panel", (), {"layout": layout})(), bpy.context)
+    return layout.texts
+
+
+def check_reconstruction_and_regularity(obj, vendored, operators):
+    """Reconstruct and Regularity colours give what the library gives on the object's
+    world arrays: the vessel as a new object placed with the sherd (its local z is the
+    stored axis), the maps as colour and value attributes."""
+    positions, triangles, _ = operators.world_arrays(obj)
+    direct_mesh = vendored.Mesh.from_arrays(positions, triangles)
+    axis = vendored.Axis(list(obj["sherd_axis_point"]), list(obj["sherd_axis_direction"]))
+
+    assert bpy.ops.sherd.reconstruct(segments=48) == {'FINISHED'}, operators.REPORTS[-1:]
+    vessel = bpy.data.objects[obj["sherd_reconstruction"]]
+    expected = vendored.reconstruct(direct_mesh, axis, segments=48)
+    local = np.empty(len(vessel.data.vertices) * 3, dtype=np.float32)
+    vessel.data.vertices.foreach_get("co", local)
+    np.testing.assert_allclose(local.reshape(-1, 3), expected.positions, atol=1e-3)
+    assert len(vessel.data.polygons) == expected.face_count
+    world = np.array(vessel.matrix_world, dtype=np.float64)
+    np.testing.assert_allclose(world[:3, 2], axis.direction, atol=1e-6)
+    # Placed with the sherd: the widest ring of the vessel is as far from the stored axis
+    # (in world coordinates) as the sherd's farthest vertex.
+    placed = local.reshape(-1, 3).astype(np.float64) @ world[:3, :3].T + world[:3, 3]
+    def radii(points):
+        offset = points - axis.point
+        return np.linalg.norm(offset - np.outer(offset @ axis.direction, axis.direction), axis=1)
+    assert abs(radii(placed).max() / radii(positions).max() - 1) < 0.01
+    print(f"  reconstruction: {len(vessel.data.vertices)} vertices, placed with the sherd")
+    activate(obj)
+
+    for kind in ("axis_distance", "ideal_vessel"):
+        assert bpy.ops.sherd.regularity(kind=kind) == {'FINISHED'}, operators.REPORTS[-1:]
+        direct = vendored.regularity(direct_mesh, axis, kind)
+        colors = obj.data.color_attributes[operators.REGULARITY_COLORS]
+        assert obj.data.color_attributes.active_color.name == colors.name
+        srgb = np.empty(len(obj.data.vertices) * 4, dtype=np.float32)
+        colors.data.foreach_get("color_srgb", srgb)
+        np.testing.assert_array_equal(np.rint(srgb.reshape(-1, 4) * 255).astype(np.uint8), direct.colors)
+        values = np.empty(len(obj.data.vertices), dtype=np.float32)
+        obj.data.attributes[operators.REGULARITY_VALUES].data.foreach_get("value", values)
+        np.testing.assert_array_equal(values, direct.values)
+        np.testing.assert_allclose(obj["sherd_regularity_range_mm"], direct.value_range)
+        print(f"  regularity {kind}: {direct.value_range[0]:.2f} to {direct.value_range[1]:.2f} mm")
+
+
+def cli_record(vendored, operators, obj, *arguments):
+    """What ``sherd orient --json`` says of the object's world mesh, written to a file."""
+    positions, triangles, _ = operators.world_arrays(obj)
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, f"{obj.name}.ply")
+        vendored.Mesh.from_arrays(positions, triangles).write_ply(path)
+        run = subprocess.run([str(ROOT / "target" / "release" / "sherd"), "orient", path, "--json", *arguments],
+                             capture_output=True, text=True, check=True)
+    return json.loads(run.stdout)
+
+
+def measurements_match_the_cli(obj, record):
+    """The panel's measurements of an automatically oriented object are the command-line
+    tool's (``--refine none``) on the same mesh, up to the rounding of the PLY file the
+    tool reads (single-precision coordinates)."""
+    direction = np.array(record["axis"]["direction"])
+    angle = math.degrees(math.acos(min(1.0, abs(float(direction @ np.array(obj["sherd_axis_direction"]))))))
+    print(f"  the add-on's axis is {angle:.2e} deg from the CLI's")
+    assert angle < 1e-2, f"the add-on's axis is {angle} deg from the CLI's"
+    for field, key in (("rim_diameter_mm", "sherd_rim_diameter_mm"), ("sector_angle_deg", "sherd_sector_angle_deg"),
+                       ("height_mm", "sherd_height_mm"), ("rim_diameter_interval_mm", "sherd_rim_diameter_interval_mm")):
+        if record[field] is None:
+            assert key not in obj, key
+        else:
+            np.testing.assert_allclose(np.array(obj[key], dtype=np.float64), record[field], rtol=1e-3, err_msg=key)
+    print(f"  measurements equal the CLI's: rim diameter {record['rim_diameter_mm']:.2f} mm")
+
+
 def test_synthetic_sherd(vendored, operators):
     clear_scene()
     # A rim piece whose rim-up sense the library finds: the sense is the library's concern
@@ -149,9 +264,22 @@ def test_synthetic_sherd(vendored, operators):
     assert bpy.ops.sherd.orient_automatic() == {'FINISHED'}, operators.REPORTS[-1:]
     found = np.array(obj["sherd_axis_direction"])
     print(f"  automatic: {math.degrees(math.acos(np.clip(found @ true_direction, -1, 1))):.3f} deg from the truth")
-    assert bpy.ops.sherd.refine(criterion="auto", surface="both") == {'FINISHED'}, operators.REPORTS[-1:]
+    assert bpy.ops.sherd.measure() == {'FINISHED'}
+    measurements_match_the_cli(obj, cli_record(vendored, operators, obj, "--refine", "none"))
+    assert bpy.ops.sherd.refine(criterion="pareto", surface="both") == {'FINISHED'}, operators.REPORTS[-1:]
+    front = np.array(obj["sherd_pareto_front"], dtype=np.float64)
+    assert front.shape[1] == 4 and len(front) == obj["sherd_pareto_point_count"] >= 2, front.shape
+    # Non-dominated: no point is better than another in both costs.
+    assert not ((front[:, None, 2] < front[None, :, 2]) & (front[:, None, 3] < front[None, :, 3])).any()
+    assert "Pareto front" in panel_texts(operators.__name__.rsplit(".", 1)[0])
     assert bpy.ops.sherd.refine(criterion="circles", surface="outer") == {'FINISHED'}, operators.REPORTS[-1:]
     assert obj["sherd_axis_source"].startswith("refined (circles, outer")
+    assert len(obj["sherd_pareto_front"]) == 0
+    # The axis kept: the automatic one refined with the library's choice of criterion (each
+    # refinement starts from the stored axis; the criteria's accuracy is the refinement
+    # layer's to measure: circles moves this sherd's axis by 1.4 deg).
+    assert bpy.ops.sherd.orient_automatic() == {'FINISHED'}, operators.REPORTS[-1:]
+    assert bpy.ops.sherd.refine(criterion="auto", surface="both") == {'FINISHED'}, operators.REPORTS[-1:]
 
     assert bpy.ops.sherd.add_axis_empty() == {'FINISHED'}
     empty = bpy.data.objects["synthetic axis"]
@@ -176,6 +304,11 @@ def test_synthetic_sherd(vendored, operators):
         expect_cancelled(operators, lambda: bpy.ops.sherd.draw(filepath=svg, style=set()), "at least one")
         expect_cancelled(operators, lambda: bpy.ops.sherd.draw(filepath=os.path.join(folder, "x.gif")), "sherd")
 
+    check_reconstruction_and_regularity(obj, vendored, operators)
+    texts = panel_texts(operators.__name__.rsplit(".", 1)[0])
+    for expected in ("Rim diameter", "95% interval", "Sector", "Height", "Residual", "Blue: inside", "Red: outside"):
+        assert expected in texts, (expected, texts)
+
     assert bpy.ops.sherd.apply_orientation() == {'FINISHED'}
     after = world_axis_direction(obj.matrix_world, truth.direction)
     error_deg = angle_to_z_deg(after)
@@ -192,14 +325,7 @@ def test_synthetic_sherd(vendored, operators):
     # The manual method: three rim vertices picked as a user would, then 2 (refused).
     clear_scene()
     obj = add_mesh_object("manual", mesh.positions, mesh.triangles)
-    matrix = mesh.oriented_transform(truth)
-    oriented = mesh.positions @ matrix[:3, :3].T + matrix[:3, 3]
-    angles = np.arctan2(oriented[:, 1], oriented[:, 0])
-    share = 3 * (angles - angles.min()) / (angles.max() - angles.min())
-    picked = []
-    for third in range(3):
-        candidates = np.flatnonzero(np.abs(share - third - 0.5) < 0.3)
-        picked.append(int(candidates[np.argmax(oriented[candidates, 2])]))
+    picked = pick_rim_vertices(mesh.positions, mesh.oriented_transform(truth))
     select_vertices(obj, picked)
     bpy.ops.object.mode_set(mode='EDIT')
     assert bpy.ops.sherd.orient_three_points() == {'FINISHED'}, operators.REPORTS[-1:]
@@ -221,12 +347,14 @@ def test_bad_input(vendored, operators):
     bpy.context.collection.objects.link(empty_object)
     activate(empty_object)
     for call in (bpy.ops.sherd.orient_automatic, bpy.ops.sherd.orient_three_points, bpy.ops.sherd.refine,
-                 bpy.ops.sherd.measure, bpy.ops.sherd.apply_orientation, bpy.ops.sherd.add_axis_empty):
+                 bpy.ops.sherd.measure, bpy.ops.sherd.apply_orientation, bpy.ops.sherd.add_axis_empty,
+                 bpy.ops.sherd.reconstruct, bpy.ops.sherd.regularity):
         expect_cancelled(operators, call, "not a mesh")
     add_mesh_object("empty mesh", [], [])
     for call in (bpy.ops.sherd.orient_automatic, bpy.ops.sherd.orient_three_points):
         expect_cancelled(operators, call, "no vertices")
-    expect_cancelled(operators, bpy.ops.sherd.measure, "orient it first")
+    for call in (bpy.ops.sherd.measure, bpy.ops.sherd.reconstruct, bpy.ops.sherd.regularity):
+        expect_cancelled(operators, call, "orient it first")
     # A mesh the library rejects: its error arrives as a report.
     add_mesh_object("degenerate", [(0, 0, 0), (1, 0, 0), (2, 0, 0)], [(0, 1, 2)])
     expect_cancelled(operators, bpy.ops.sherd.orient_automatic, "sherd")
@@ -249,6 +377,7 @@ def test_real_scan(vendored, operators):
     assert abs(np.array(obj["sherd_axis_direction"]) @ direct.axis.direction) > math.cos(math.radians(0.5))
     assert bpy.ops.sherd.measure() == {'FINISHED'}
     stored_measurements_match(obj, vendored, operators)
+    check_reconstruction_and_regularity(obj, vendored, operators)
     assert bpy.ops.sherd.apply_orientation() == {'FINISHED'}
     print(f"  A011: oriented, rim diameter {obj.get('sherd_rim_diameter_mm', float('nan')):.1f} mm")
 
@@ -270,4 +399,5 @@ def main():
     print("all Blender add-on tests passed")
 
 
-main()
+if __name__ == "__main__":
+    main()

@@ -1,11 +1,12 @@
-/* Helpers shared by the pipeline tests: synthetic sherds, axis angles, picking three
- * points on the rim. */
+/* Helpers shared by the pipeline tests (C and C++): synthetic sherds, axis angles,
+ * picking three points on the rim. `static inline` so that a test using some of them
+ * compiles without unused-function warnings. */
 #ifndef SHERD_TEST_PIPELINE_H
 #define SHERD_TEST_PIPELINE_H
 
 #include "check.h"
 
-static SherdAxis new_axis(void) {
+static inline SherdAxis new_axis(void) {
     SherdAxis axis;
     memset(&axis, 0, sizeof axis);
     axis.size = sizeof axis;
@@ -13,7 +14,7 @@ static SherdAxis new_axis(void) {
 }
 
 /* Cosine of the angle between the two axes' directions. */
-static double direction_cosine(const SherdAxis *a, const SherdAxis *b) {
+static inline double direction_cosine(const SherdAxis *a, const SherdAxis *b) {
     double dot = 0.0, na = 0.0, nb = 0.0, cosine;
     int k;
     for (k = 0; k < 3; ++k) {
@@ -26,17 +27,17 @@ static double direction_cosine(const SherdAxis *a, const SherdAxis *b) {
 }
 
 /* Angle in degrees between the directions, sense included (base to rim). */
-static double angle_deg(const SherdAxis *a, const SherdAxis *b) {
+static inline double angle_deg(const SherdAxis *a, const SherdAxis *b) {
     return acos(direction_cosine(a, b)) * 180.0 / 3.14159265358979323846;
 }
 
 /* Angle in degrees between the two axes' lines, ignoring their sense. */
-static double line_angle_deg(const SherdAxis *a, const SherdAxis *b) {
+static inline double line_angle_deg(const SherdAxis *a, const SherdAxis *b) {
     return acos(fabs(direction_cosine(a, b))) * 180.0 / 3.14159265358979323846;
 }
 
 /* Copies the mesh's positions into a new array (free it). */
-static double *positions_of(const SherdMesh *mesh, size_t *vertex_count) {
+static inline double *positions_of(const SherdMesh *mesh, size_t *vertex_count) {
     double *positions;
     CHECK_OK(sherd_mesh_vertex_count(mesh, vertex_count));
     positions = (double *)malloc(3 * *vertex_count * sizeof(double));
@@ -48,7 +49,7 @@ static double *positions_of(const SherdMesh *mesh, size_t *vertex_count) {
 /* Three vertices on the rim as a user would pick them: in the oriented frame of the
  * true axis, split the fragment's angular extent in three and take the highest vertex
  * of each third. */
-static void pick_rim_points(const SherdMesh *mesh, const SherdAxis *truth, double points[9]) {
+static inline void pick_rim_points(const SherdMesh *mesh, const SherdAxis *truth, double points[9]) {
     double matrix[16];
     size_t n, i;
     double *positions = positions_of(mesh, &n);

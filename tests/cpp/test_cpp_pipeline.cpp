@@ -1,39 +1,71 @@
 // The whole pipeline through sherd.hpp on a synthetic sherd, from its arrays and from a
 // file: repair, decimate, orient (automatic, three points), refine with each criterion,
-// measure, draw in each format, export. Built and run under valgrind by tests/c/run.sh.
+// measure, draw in each format, export, reconstruct, map the regularity, and the
+// pipeline in one call. Built and run under valgrind by tests/c/run.sh.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
+#include "pipeline.h"  // CHECK, the axis angles and the rim picking the C tests use
 #include "sherd.hpp"
-
-#define CHECK(condition)                                                                       \
-    do {                                                                                       \
-        if (!(condition)) {                                                                    \
-            std::fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #condition); \
-            std::exit(1);                                                                      \
-        }                                                                                      \
-    } while (0)
 
 namespace {
 
-double line_angle_deg(const SherdAxis& a, const SherdAxis& b) {
-    double dot = 0, na = 0, nb = 0;
-    for (int k = 0; k < 3; ++k) {
-        dot += a.direction[k] * b.direction[k];
-        na += a.direction[k] * a.direction[k];
-        nb += b.direction[k] * b.direction[k];
-    }
-    return std::acos(std::fmin(1.0, std::fabs(dot) / std::sqrt(na * nb))) * 180.0 / M_PI;
-}
+double line_angle_deg(const SherdAxis& a, const SherdAxis& b) { return ::line_angle_deg(&a, &b); }
 
-void pipeline(const sherd::Mesh& mesh, const SherdAxis& truth, bool all_criteria) {
+void orient(const sherd::Mesh& mesh, const SherdAxis& truth) {
     sherd::Orientation orientation = sherd::orient_automatic(mesh);
     CHECK(orientation.oriented && orientation.reason.empty());
     CHECK(line_angle_deg(orientation.axis, truth) < 3.0);
     CHECK(orientation.report_json.find("\"method\"") != std::string::npos);
+
+    std::array<double, 9> picked{};
+    pick_rim_points(mesh.get(), &truth, picked.data());
+    sherd::Orientation manual = sherd::orient_from_three_points(mesh, picked);
+    CHECK(manual.oriented && line_angle_deg(manual.axis, truth) < 5.0);
+    std::printf("  three points: %.3f deg from the truth\n", line_angle_deg(manual.axis, truth));
+    picked[0] += 1000.0;  // a point off the mesh
+    try {
+        sherd::orient_from_three_points(mesh, picked);
+        CHECK(!"a point off the mesh was accepted");
+    } catch (const sherd::Error& error) {
+        CHECK(error.status() == SHERD_STATUS_INVALID_ARGUMENT);
+    }
+}
+
+// The axis distances are the radii of the vertices in the oriented frame; the
+// reconstruction is a surface of revolution about z as wide as the sherd.
+void reconstruct_and_map(const sherd::Mesh& mesh, const SherdAxis& axis) {
+    sherd::Regularity radii = sherd::regularity(mesh, axis, SHERD_REGULARITY_AXIS_DISTANCE);
+    std::array<double, 16> m = mesh.oriented_transform(axis);
+    std::vector<double> p = mesh.positions();
+    CHECK(radii.values.size() == mesh.vertex_count() && radii.rgba.size() == 4 * mesh.vertex_count());
+    for (std::size_t i = 0; i < radii.values.size(); ++i) {
+        const double* q = &p[3 * i];
+        double x = m[0] * q[0] + m[1] * q[1] + m[2] * q[2] + m[3], y = m[4] * q[0] + m[5] * q[1] + m[6] * q[2] + m[7];
+        CHECK(std::fabs(radii.values[i] - std::hypot(x, y)) < 1e-3);
+    }
+    sherd::Mesh vessel = sherd::reconstruct(mesh, axis, NAN, 36);
+    std::vector<double> points = vessel.positions();
+    double largest = 0.0;
+    for (std::size_t i = 0; i < points.size(); i += 3) largest = std::max(largest, std::hypot(points[i], points[i + 1]));
+    const double sherd_radius = *std::max_element(radii.values.begin(), radii.values.end());
+    CHECK(vessel.vertex_count() % 36 == 0 && std::fabs(largest / sherd_radius - 1.0) < 0.01);
+    sherd::Regularity ideal = sherd::regularity(mesh, axis);
+    CHECK(ideal.value_range[0] == -ideal.value_range[1]);
+    try {
+        sherd::regularity(mesh, axis, 7);
+        CHECK(!"an unknown map was accepted");
+    } catch (const sherd::Error& error) {
+        CHECK(error.status() == SHERD_STATUS_INVALID_ARGUMENT);
+    }
+}
+
+void pipeline(const sherd::Mesh& mesh, const SherdAxis& truth, bool all_criteria) {
+    sherd::Orientation orientation = sherd::orient_automatic(mesh);
 
     // Every explicit criterion when asked (valgrind makes each slow), then AUTO, kept.
     for (std::uint32_t criterion = SHERD_CRITERION_CIRCLES; all_criteria && criterion < SHERD_CRITERION_AUTO;
@@ -67,6 +99,29 @@ void pipeline(const sherd::Mesh& mesh, const SherdAxis& truth, bool all_criteria
     CHECK(sherd::profile_csv(mesh, refined.axis).rfind("curve,index,r_mm,z_mm,closed\n", 0) == 0);
     std::remove("cpp-oriented.ply");
     std::remove("cpp-reconstruction.ply");
+    reconstruct_and_map(mesh, refined.axis);
+}
+
+// The pipeline in one call, from memory and from a file, agrees with itself; a missing
+// file throws with the status and the file's name.
+void pipeline_in_one_call(const sherd::Mesh& mesh, const SherdAxis& truth) {
+    sherd::Analysis memory = sherd::analyse(mesh);
+    CHECK(memory.status == SHERD_STATUS_OK && line_angle_deg(memory.axis, truth) < 3.0);
+    CHECK(memory.record_json.find("\"file\":\"<memory>\"") != std::string::npos);
+    mesh.write_ply("cpp-process.ply");
+    sherd::RefineOptions circles(sherd_refine_options_new);
+    sherd::check(sherd_refine_options_set_criterion(circles.get(), SHERD_CRITERION_CIRCLES));
+    sherd::Analysis file = sherd::process_file("cpp-process.ply", &circles);
+    std::remove("cpp-process.ply");
+    CHECK(file.status == SHERD_STATUS_OK && line_angle_deg(file.axis, truth) < 3.0);
+    CHECK(file.record_json.find("circles") != std::string::npos);
+    try {
+        sherd::process_file("cpp-no-such-scan.ply");
+        CHECK(!"a missing file was accepted");
+    } catch (const sherd::Error& error) {
+        CHECK(error.status() == SHERD_STATUS_IO);
+        CHECK(std::string(error.what()).find("cpp-no-such-scan.ply") != std::string::npos);
+    }
 }
 
 }  // namespace
@@ -82,7 +137,9 @@ int main() {
     sherd::Mesh repaired = from_arrays;
     CHECK(sherd::repair(repaired).find("\"faces_after\"") != std::string::npos);
     CHECK(sherd::decimate(from_arrays, 2000).face_count() < 2400);
+    orient(from_arrays, sherd_.true_axis);
     pipeline(from_arrays, sherd_.true_axis, true);
+    pipeline_in_one_call(from_arrays, sherd_.true_axis);
 
     // From a file.
     sherd_.mesh.write_ply("cpp-sherd.ply");

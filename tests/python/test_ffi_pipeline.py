@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 import sherd
+from rim_points import pick_rim_vertices
 
 
 def angle_deg(a, b, signed=True):
@@ -44,23 +45,9 @@ def test_automatic_orientation_finds_the_axis(rim_sherd):
     np.testing.assert_array_equal(sherd.orient_automatic(copy).axis.direction, orientation.axis.direction)
 
 
-def pick_rim_points(mesh, truth):
-    """Three vertices on the rim as a user picks them: in the true oriented frame, the
-    highest vertex near the middle of each third of the fragment's angular extent."""
-    matrix = mesh.oriented_transform(truth)
-    oriented = mesh.positions @ matrix[:3, :3].T + matrix[:3, 3]
-    angles = np.arctan2(oriented[:, 1], oriented[:, 0])
-    share = 3 * (angles - angles.min()) / (angles.max() - angles.min())
-    picked = []
-    for third in range(3):
-        candidates = np.flatnonzero(np.abs(share - third - 0.5) < 0.3)
-        picked.append(mesh.positions[candidates[np.argmax(oriented[candidates, 2])]])
-    return np.array(picked)
-
-
 def test_three_points_on_the_rim(rim_sherd):
     mesh, truth, _ = rim_sherd
-    picked = pick_rim_points(mesh, truth)
+    picked = mesh.positions[pick_rim_vertices(mesh.positions, mesh.oriented_transform(truth))]
     orientation = sherd.orient_from_three_points(mesh, picked)
     assert angle_deg(orientation.axis, truth, signed=False) < 5.0
     with pytest.raises(sherd.InvalidArgumentError, match="point 1"):
@@ -102,13 +89,7 @@ def oriented_rim(rim_sherd):
     return mesh, truth, sherd.orient_automatic(mesh).axis
 
 
-PROFILE_DEFECT = pytest.mark.xfail(
-    strict=True,
-    reason="known defect (issue 4): the profile criterion moves this well-oriented rim from 0.4 to 6 deg; "
-    "its own cost prefers the wrong axis on deformed sherds")
-
-
-@pytest.mark.parametrize("criterion", ["circles", "pareto", pytest.param("profile", marks=PROFILE_DEFECT), "tangent", "auto"])
+@pytest.mark.parametrize("criterion", ["circles", "pareto", "profile", "tangent", "auto"])
 def test_refine_with_each_criterion(oriented_rim, criterion):
     mesh, truth, start = oriented_rim
     refinement = sherd.refine(mesh, start, criterion=criterion, surface="both")

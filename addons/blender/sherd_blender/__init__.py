@@ -12,7 +12,7 @@ bl_info = {
     "version": (0, 1, 0),
     "blender": (3, 4, 0),
     "location": "3D View > Sidebar > Sherd",
-    "description": "Orient, refine and measure scans of archaeological pottery sherds",
+    "description": "Orient, refine, measure, draw and reconstruct scans of archaeological pottery sherds",
     "category": "Mesh",
 }
 

@@ -104,6 +104,17 @@ def progress(context, steps):
         window_manager.progress_end()
 
 
+def with_stored_axis(context, call):
+    """Runs ``call(mesh, axis)`` on the active mesh object's world arrays and its stored
+    axis, with progress; returns ``(object, mesh, axis, call's result)``."""
+    obj = active_mesh_object(context)
+    axis = stored_axis(obj)
+    with progress(context, 2) as update:
+        mesh, _ = library_mesh(obj)
+        update(1)
+        return obj, mesh, axis, call(mesh, axis)
+
+
 #: The reports of the Sherd operators, newest last, as ``(types, message)`` (Blender
 #: gives scripts no access to an operator's reports; tests and scripts read them here).
 REPORTS = []
@@ -196,16 +207,14 @@ class SHERD_OT_refine(SherdOperator, bpy.types.Operator):
     surface: bpy.props.EnumProperty(name="Surface", items=SURFACE_ITEMS, default="both")
 
     def run(self, context):
-        obj = active_mesh_object(context)
-        axis = stored_axis(obj)
-        with progress(context, 2) as update:
-            mesh, _ = library_mesh(obj)
-            update(1)
-            refinement = sherd().refine(mesh, axis, criterion=self.criterion, surface=self.surface)
+        obj, _, _, refinement = with_stored_axis(
+            context, lambda mesh, axis: sherd().refine(mesh, axis, criterion=self.criterion, surface=self.surface))
         store_axis(obj, refinement.axis, f"refined ({refinement.criterion}, {refinement.surface})")
         obj["sherd_refine_residual_mm"] = float(refinement.residual_mm)
         obj["sherd_refine_tilt_deg"] = float(refinement.tilt_deg)
         obj["sherd_pareto_point_count"] = len(refinement.pareto_front)
+        # Each point: tilt about x and y (deg), centre dispersion and circle residual (mm^2).
+        obj["sherd_pareto_front"] = refinement.pareto_front.tolist()
         self.notify({'INFO'}, f"refined: tilt {refinement.tilt_deg:.2f} deg, residual {refinement.residual_mm:.3f} mm")
         return {'FINISHED'}
 
@@ -222,12 +231,7 @@ class SHERD_OT_measure(SherdOperator, bpy.types.Operator):
     bl_label = "Measure"
 
     def run(self, context):
-        obj = active_mesh_object(context)
-        axis = stored_axis(obj)
-        with progress(context, 2) as update:
-            mesh, _ = library_mesh(obj)
-            update(1)
-            measurements = sherd().measure(mesh, axis)
+        obj, _, _, measurements = with_stored_axis(context, lambda mesh, axis: sherd().measure(mesh, axis))
         for field, key in MEASUREMENT_KEYS.items():
             value = getattr(measurements, field)
             # A figure the fragment does not determine (NaN) is removed, not stored as a number.
@@ -342,5 +346,84 @@ class SHERD_OT_draw(SherdOperator, bpy.types.Operator):
         return {'FINISHED'}
 
 
-classes = (SHERD_OT_draw, SHERD_OT_orient_automatic, SHERD_OT_orient_three_points, SHERD_OT_refine, SHERD_OT_measure,
+REGULARITY_ITEMS = [
+    ("ideal_vessel", "Ideal vessel", "Signed distance to the vessel revolved from the profile: blue inside the ideal "
+                                     "wall, white on it, red outside"),
+    ("axis_distance", "Axis distance", "Distance of each vertex to the axis: blue near, red far"),
+]
+#: The colour attribute the regularity map writes, and the float attribute of its values.
+REGULARITY_COLORS = "Sherd regularity"
+REGULARITY_VALUES = "sherd_regularity_mm"
+
+
+class SHERD_OT_reconstruct(SherdOperator, bpy.types.Operator):
+    """Add the vessel reconstructed by revolving the sherd's profile about the stored axis
+    as a new mesh object, placed with the sherd"""
+
+    bl_idname = "sherd.reconstruct"
+    bl_label = "Reconstruct vessel"
+
+    segments: bpy.props.IntProperty(name="Segments", description="Steps of the revolution around the axis",
+                                    default=180, min=3, max=3600)
+
+    def run(self, context):
+        obj, mesh, axis, vessel = with_stored_axis(
+            context, lambda mesh, axis: sherd().reconstruct(mesh, axis, segments=self.segments))
+        # The library gives the vessel in the oriented frame of the world positions.
+        to_oriented = mesh.oriented_transform(axis)
+        data = bpy.data.meshes.new(f"{obj.name} vessel")
+        data.from_pydata(vessel.positions.tolist(), [], vessel.triangles.tolist())
+        data.update()
+        reconstruction = bpy.data.objects.new(f"{obj.name} vessel", data)
+        reconstruction.matrix_world = Matrix(np.linalg.inv(to_oriented).tolist())
+        context.collection.objects.link(reconstruction)
+        obj["sherd_reconstruction"] = reconstruction.name
+        self.notify({'INFO'}, f"reconstruction {reconstruction.name!r}: {len(data.vertices)} vertices")
+        return {'FINISHED'}
+
+
+def show_vertex_colors(context):
+    """Switches the solid shading of the open 3D Viewports to the colour attribute."""
+    screen = context.screen
+    for area in (screen.areas if screen is not None else ()):
+        if area.type == 'VIEW_3D':
+            area.spaces.active.shading.color_type = 'VERTEX'
+
+
+class SHERD_OT_regularity(SherdOperator, bpy.types.Operator):
+    """Paint the regularity map on the sherd as vertex colours (attribute "Sherd
+    regularity"; the values in mm as the attribute "sherd_regularity_mm")"""
+
+    bl_idname = "sherd.regularity"
+    bl_label = "Regularity colours"
+
+    kind: bpy.props.EnumProperty(name="Map", items=REGULARITY_ITEMS, default="ideal_vessel")
+
+    def run(self, context):
+        obj, _, _, regularity = with_stored_axis(context, lambda mesh, axis: sherd().regularity(mesh, axis, self.kind))
+        editing = obj.mode == 'EDIT'
+        if editing:
+            # Attributes written in Edit Mode would be overwritten by the edit mesh.
+            bpy.ops.object.mode_set(mode='OBJECT')
+        data = obj.data
+        for name in (REGULARITY_COLORS, REGULARITY_VALUES):
+            if name in data.attributes:
+                data.attributes.remove(data.attributes[name])
+        colors = data.color_attributes.new(REGULARITY_COLORS, 'BYTE_COLOR', 'POINT')
+        colors.data.foreach_set("color_srgb", (regularity.colors.astype(np.float32) / 255.0).ravel())
+        data.color_attributes.active_color = colors
+        values = data.attributes.new(REGULARITY_VALUES, 'FLOAT', 'POINT')
+        values.data.foreach_set("value", regularity.values)
+        data.update()
+        if editing:
+            bpy.ops.object.mode_set(mode='EDIT')
+        obj["sherd_regularity_kind"] = self.kind
+        obj["sherd_regularity_range_mm"] = [float(v) for v in regularity.value_range]
+        show_vertex_colors(context)
+        low, high = regularity.value_range
+        self.notify({'INFO'}, f"regularity ({self.kind}): {low:.2f} to {high:.2f} mm")
+        return {'FINISHED'}
+
+
+classes = (SHERD_OT_reconstruct, SHERD_OT_regularity, SHERD_OT_draw, SHERD_OT_orient_automatic, SHERD_OT_orient_three_points, SHERD_OT_refine, SHERD_OT_measure,
            SHERD_OT_apply_orientation, SHERD_OT_add_axis_empty)

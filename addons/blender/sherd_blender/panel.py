@@ -17,6 +17,12 @@ class SherdSettings(bpy.types.PropertyGroup):
                                           default={"light", "occlusion"})
     drawing_scale_denominator: bpy.props.IntProperty(name="Scale 1:", default=1, min=1, max=1000)
     drawing_dpi: bpy.props.FloatProperty(name="DPI", default=300.0, min=10.0, max=2400.0)
+    reconstruction_segments: bpy.props.IntProperty(name="Segments", default=180, min=3, max=3600)
+    regularity_kind: bpy.props.EnumProperty(name="Map", items=operators.REGULARITY_ITEMS, default="ideal_vessel")
+
+
+#: Points of the Pareto front listed in the panel (all are in the custom property).
+PARETO_ROWS = 6
 
 
 def _row(layout, label, value, unit):
@@ -47,17 +53,28 @@ class SHERD_PT_panel(bpy.types.Panel):
         column.operator(operators.SHERD_OT_orient_automatic.bl_idname)
         column.operator(operators.SHERD_OT_orient_three_points.bl_idname)
 
+        # The sidebar is narrow: one value per row, choices without their labels in a row.
         box = layout.box()
-        box.prop(settings, "criterion")
-        box.prop(settings, "surface")
+        box.label(text="Refinement: criterion, surface")
+        row = box.row(align=True)
+        row.prop(settings, "criterion", text="")
+        row.prop(settings, "surface", text="")
         refine = box.operator(operators.SHERD_OT_refine.bl_idname)
         refine.criterion = settings.criterion
         refine.surface = settings.surface
         if "sherd_refine_residual_mm" in obj:
-            box.label(text=f"Residual {obj['sherd_refine_residual_mm']:.3f} mm, "
-                           f"tilt {obj['sherd_refine_tilt_deg']:.2f} deg")
-            if obj.get("sherd_pareto_point_count", 0):
-                box.label(text=f"Pareto front: {obj['sherd_pareto_point_count']} points")
+            _row(box, "Residual", f"{obj['sherd_refine_residual_mm']:.3f}", "mm")
+            _row(box, "Tilt", f"{obj['sherd_refine_tilt_deg']:.2f}", "deg")
+            front = obj.get("sherd_pareto_front", [])
+            if len(front):
+                _row(box, "Pareto front", f"{len(front)}", "points")
+                # The trade-off along the front: each point's two costs, the first few.
+                column = box.column(align=True)
+                column.label(text="dispersion / residual, mm²")
+                for *_, dispersion, residual in list(front)[:PARETO_ROWS]:
+                    column.label(text=f"{dispersion:.4f} / {residual:.4f}")
+                if len(front) > PARETO_ROWS:
+                    column.label(text=f"... {len(front) - PARETO_ROWS} more (sherd_pareto_front)")
 
         column = layout.column(align=True)
         column.operator(operators.SHERD_OT_apply_orientation.bl_idname)
@@ -69,8 +86,9 @@ class SHERD_PT_panel(bpy.types.Panel):
             box.label(text=f"Axis: {obj[operators.AXIS_SOURCE]}")
         keys = operators.MEASUREMENT_KEYS
         if keys["rim_diameter_mm"] in obj:
+            _row(box, "Rim diameter", f"{obj[keys['rim_diameter_mm']]:.1f}", "mm")
             low, high = obj.get(keys["rim_diameter_interval_mm"], (math.nan, math.nan))
-            _row(box, "Rim diameter", f"{obj[keys['rim_diameter_mm']]:.1f} [{low:.1f}, {high:.1f}]", "mm")
+            _row(box, "95% interval", f"{low:.1f}–{high:.1f}", "mm")
         if keys["sector_angle_deg"] in obj:
             _row(box, "Sector", f"{obj[keys['sector_angle_deg']]:.1f}", "deg")
         if keys["height_mm"] in obj:
@@ -79,15 +97,29 @@ class SHERD_PT_panel(bpy.types.Panel):
             _row(box, "Capacity", f"{obj[keys['capacity_litres']]:.3f}", "l")
 
         box = layout.box()
-        box.prop(settings, "drawing_style")
+        box.label(text="Drawing")
+        box.grid_flow(row_major=True, columns=2, align=True).prop(settings, "drawing_style", expand=True)
         box.prop(settings, "drawing_scale_denominator")
         box.prop(settings, "drawing_dpi")
-        box.prop(settings, "drawing_path")
+        box.prop(settings, "drawing_path", text="")
         draw = box.operator(operators.SHERD_OT_draw.bl_idname)
         draw.filepath = settings.drawing_path
         draw.style = settings.drawing_style
         draw.scale_denominator = settings.drawing_scale_denominator
         draw.dpi = settings.drawing_dpi
+
+        box = layout.box()
+        box.label(text="Reconstruction")
+        box.prop(settings, "reconstruction_segments")
+        box.operator(operators.SHERD_OT_reconstruct.bl_idname).segments = settings.reconstruction_segments
+        box.prop(settings, "regularity_kind", text="")
+        box.operator(operators.SHERD_OT_regularity.bl_idname).kind = settings.regularity_kind
+        if "sherd_regularity_range_mm" in obj:
+            low, high = obj["sherd_regularity_range_mm"]
+            names = {"ideal_vessel": ("inside", "outside"), "axis_distance": ("near", "far")}
+            inner, outer = names.get(obj.get("sherd_regularity_kind"), ("low", "high"))
+            _row(box, f"Blue: {inner}", f"{low:.2f}", "mm")
+            _row(box, f"Red: {outer}", f"{high:.2f}", "mm")
 
 
 classes = (SherdSettings, SHERD_PT_panel)

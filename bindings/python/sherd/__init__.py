@@ -26,8 +26,9 @@ from .draw import Drawing
 from .export import (export_oriented_ply, export_profile_csv, export_reconstruction_ply, most_informative_angle,
                      profile_csv, profile_section)
 from .mesh import Attribute, Mesh
-from .pipeline import (Measurements, Orientation, Refinement, measure, orient_automatic, orient_from_three_points,
-                       refine, synthetic_sherd)
+from .pipeline import (Analysis, Measurements, Orientation, Refinement, analyse, measure, orient_automatic,
+                       orient_from_three_points, process_file, refine, synthetic_sherd)
+from .reconstruct import Regularity, reconstruct, regularity
 
 if lib.sherd_abi_version() != ABI_VERSION:
     raise ImportError(
@@ -37,6 +38,7 @@ if lib.sherd_abi_version() != ABI_VERSION:
 __version__ = lib.sherd_version().decode()
 
 __all__ = [
+    "Analysis", "analyse", "process_file", "Regularity", "reconstruct", "regularity",
     "Attribute", "Axis", "Drawing", "BufferTooSmallError", "DegenerateGeometryError", "InvalidArgumentError", "Mesh",
     "NeedsManualOrientationError", "NotAvailableError", "NotConvergedError", "NullPointerError", "PanicError",
     "ParseError", "SherdError", "SherdIOError", "Status", "export_oriented_ply", "export_profile_csv",

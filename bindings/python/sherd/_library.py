@@ -258,3 +258,12 @@ _declare("sherd_drawing_build", Status, SherdMesh_p, SherdAxis_p, SherdOptions_p
 _declare("sherd_drawing_write", Status, SherdDrawing_p, ctypes.c_char_p)
 _declare("sherd_drawing_to_buffer", Status, SherdDrawing_p, ctypes.c_uint32, ctypes.POINTER(SherdBuffer_p))
 _declare("sherd_drawing_free", None, SherdDrawing_p)
+
+_declare("sherd_reconstruct", Status, SherdMesh_p, SherdAxis_p, ctypes.c_double, ctypes.c_size_t,
+         ctypes.POINTER(SherdMesh_p))
+_declare("sherd_regularity", Status, SherdMesh_p, SherdAxis_p, ctypes.c_uint32, ctypes.c_double, c_float_p, c_uint8_p,
+         ctypes.c_size_t, c_double_p)
+_declare("sherd_process_file", Status, ctypes.c_char_p, SherdOptions_p, ctypes.c_double, SherdAxis_p,
+         ctypes.POINTER(SherdBuffer_p))
+_declare("sherd_analyse", Status, SherdMesh_p, SherdOptions_p, ctypes.c_double, SherdAxis_p,
+         ctypes.POINTER(SherdBuffer_p))

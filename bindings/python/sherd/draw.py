@@ -6,6 +6,7 @@ import os
 
 from . import _library as c
 from .errors import check
+from .handle import Handle
 from .options import Options, enum_value, take_buffer
 
 STYLES = {"linear": 1, "colour": 2, "color": 2, "light": 4, "occlusion": 8, "stipple": 16, "regularity": 32}
@@ -26,26 +27,28 @@ def _styles(value):
     return int(value)
 
 
-class Drawing:
+class Drawing(Handle):
     """A finished drawing (``SherdDrawing``), freed when garbage-collected or on close."""
+
+    _kind = "drawing"
 
     def __init__(self, mesh, axis, *, style="light,occlusion", scale_denominator=None, dpi=None,
                  section_angle_rad=None, section_fill=None, placement=None, regularity=None, title=None):
         """Builds the drawing of ``mesh`` oriented by ``axis``; ``style`` is a list or a
         comma-separated string of linear, colour, light, occlusion, stipple, regularity."""
         setters = {
-            "style": ("sherd_draw_options_set_style", _styles),
-            "scale_denominator": ("sherd_draw_options_set_scale_denominator", int),
-            "dpi": ("sherd_draw_options_set_dpi", float),
-            "section_angle_rad": ("sherd_draw_options_set_section_angle_rad", float),
-            "section_fill": ("sherd_draw_options_set_section_fill", lambda v: enum_value(FILLS, v, "section fill")),
-            "placement": ("sherd_draw_options_set_placement", lambda v: enum_value(PLACEMENTS, v, "placement")),
-            "regularity": ("sherd_draw_options_set_regularity", lambda v: enum_value(REGULARITY, v, "regularity")),
-            "title": ("sherd_draw_options_set_title", lambda v: v.encode("utf-8")),
+            "style": _styles,
+            "scale_denominator": int,
+            "dpi": float,
+            "section_angle_rad": float,
+            "section_fill": lambda v: enum_value(FILLS, v, "section fill"),
+            "placement": lambda v: enum_value(PLACEMENTS, v, "placement"),
+            "regularity": lambda v: enum_value(REGULARITY, v, "regularity"),
+            "title": lambda v: v.encode("utf-8"),
         }
         values = dict(style=style, scale_denominator=scale_denominator, dpi=dpi, section_angle_rad=section_angle_rad,
                       section_fill=section_fill, placement=placement, regularity=regularity, title=title)
-        self._handle = None
+        super().__init__(None)
         handle = c.SherdDrawing_p()
         c_axis = axis.to_c()
         with Options("draw", values, setters) as options:
@@ -55,23 +58,9 @@ class Drawing:
     def to_bytes(self, format="svg"):
         """The drawing in ``format`` (svg, eps, pdf, png)."""
         buffer = c.SherdBuffer_p()
-        check(c.lib.sherd_drawing_to_buffer(self._handle, enum_value(FORMATS, format, "format"), ctypes.byref(buffer)))
+        check(c.lib.sherd_drawing_to_buffer(self.handle, enum_value(FORMATS, format, "format"), ctypes.byref(buffer)))
         return take_buffer(buffer)
 
     def write(self, path):
         """Writes the drawing, the format chosen by the file's extension (atomically)."""
-        check(c.lib.sherd_drawing_write(self._handle, os.fsencode(path)))
-
-    def close(self):
-        handle, self._handle = getattr(self, "_handle", None), None
-        if handle:
-            c.lib.sherd_drawing_free(handle)
-
-    def __del__(self):
-        self.close()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
+        check(c.lib.sherd_drawing_write(self.handle, os.fsencode(path)))

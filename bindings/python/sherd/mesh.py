@@ -10,6 +10,7 @@ import numpy as np
 from . import _library as c
 from .axis import as_pointer
 from .errors import InvalidArgumentError, Status, check
+from .handle import Handle
 from .options import Options, take_json
 
 
@@ -34,12 +35,11 @@ def _array(values, dtype, columns, name):
     return array
 
 
-class Mesh:
-    """An owned mesh (``SherdMesh``). Freed when garbage-collected or on :meth:`close`."""
+class Mesh(Handle):
+    """An owned mesh (``SherdMesh``). Freed when garbage-collected or on :meth:`close`;
+    build it with the class methods."""
 
-    def __init__(self, handle):
-        """Takes ownership of a ``SherdMesh*`` from the C API (use the class methods)."""
-        self._handle = handle
+    _kind = "mesh"
 
     @classmethod
     def from_arrays(cls, positions, triangles=None, normals=None, colors=None, corner_uvs=None):
@@ -64,28 +64,6 @@ class Mesh:
         if corner_uvs is not None:
             mesh.set_corner_uvs(corner_uvs)
         return mesh
-
-    def close(self):
-        """Frees the mesh now; the object is unusable afterwards."""
-        handle, self._handle = getattr(self, "_handle", None), None
-        if handle:
-            c.lib.sherd_mesh_free(handle)
-
-    def __del__(self):
-        self.close()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    @property
-    def handle(self):
-        """The ``SherdMesh*``, still owned by this object."""
-        if not self._handle:
-            raise ValueError("the mesh was closed")
-        return self._handle
 
     def copy(self):
         """An independent copy."""
@@ -207,8 +185,8 @@ class Mesh:
     def repair(self, *, merge_tolerance_mm=None, keep_largest_component=None):
         """Repairs in place; returns the report (a dict of what changed)."""
         setters = {
-            "merge_tolerance_mm": ("sherd_repair_options_set_merge_tolerance_mm", float),
-            "keep_largest_component": ("sherd_repair_options_set_keep_largest_component", bool),
+            "merge_tolerance_mm": float,
+            "keep_largest_component": bool,
         }
         values = dict(merge_tolerance_mm=merge_tolerance_mm, keep_largest_component=keep_largest_component)
         report = c.SherdBuffer_p()

@@ -26,7 +26,9 @@ def take_json(buffer):
 
 
 class Options:
-    """An option builder, freed on exit; ``setters`` maps keyword to (C setter, converter)."""
+    """An option builder ``sherd_<name>_options``, freed on exit. ``values`` maps each
+    keyword to its value (None keeps the library's default), ``setters`` each keyword to
+    the converter of its value for the C setter ``sherd_<name>_options_set_<keyword>``."""
 
     def __init__(self, name, values, setters):
         self.name = name
@@ -38,8 +40,8 @@ class Options:
                     continue
                 if key not in setters:
                     raise TypeError(f"unknown {name} option {key!r}")
-                setter, convert = setters[key]
-                check(getattr(c.lib, setter)(self.handle, convert(value)))
+                setter = getattr(c.lib, f"sherd_{name}_options_set_{key}")
+                check(setter(self.handle, setters[key](value)))
         except BaseException:
             self.close()
             raise

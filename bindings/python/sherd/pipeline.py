@@ -1,6 +1,8 @@
-"""The pipeline over the C ABI: synthetic sherds, orientation, refinement, measurements."""
+"""The pipeline over the C ABI: synthetic sherds, orientation, refinement, measurements,
+and the whole pipeline in one call (the record ``sherd orient --json`` prints)."""
 
 import ctypes
+import os
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -68,9 +70,9 @@ def orient_automatic(mesh, *, target_vertex_count=None, smoothing_iterations=Non
     :class:`Orientation`; check ``oriented`` (a fragment that does not determine its
     axis is not an exception: it is an answer)."""
     setters = {
-        "target_vertex_count": ("sherd_orient_options_set_target_vertex_count", int),
-        "smoothing_iterations": ("sherd_orient_options_set_smoothing_iterations", int),
-        "opposite_normal_confidence": ("sherd_orient_options_set_opposite_normal_confidence", float),
+        "target_vertex_count": int,
+        "smoothing_iterations": int,
+        "opposite_normal_confidence": float,
     }
     values = dict(target_vertex_count=target_vertex_count, smoothing_iterations=smoothing_iterations,
                   opposite_normal_confidence=opposite_normal_confidence)
@@ -86,8 +88,8 @@ def orient_from_three_points(mesh, points, *, keep_fraction=None, max_pick_dista
     groove, base edge): ``points`` is (3, 3)."""
     picked = np.ascontiguousarray(points, dtype=np.float64).reshape(9)
     setters = {
-        "keep_fraction": ("sherd_manual_options_set_keep_fraction", float),
-        "max_pick_distance_mm": ("sherd_manual_options_set_max_pick_distance_mm", float),
+        "keep_fraction": float,
+        "max_pick_distance_mm": float,
     }
     values = dict(keep_fraction=keep_fraction, max_pick_distance_mm=max_pick_distance_mm)
     axis, summary, report = _outputs()
@@ -119,10 +121,10 @@ class Refinement:
 
 def _refine_options(criterion="auto", surface="both", section_count=0, search_bound_deg=None):
     setters = {
-        "criterion": ("sherd_refine_options_set_criterion", lambda v: enum_value(CRITERIA, v, "criterion")),
-        "surface": ("sherd_refine_options_set_surface", lambda v: enum_value(SURFACES, v, "surface")),
-        "section_count": ("sherd_refine_options_set_section_count", int),
-        "search_bound_deg": ("sherd_refine_options_set_search_bound_deg", float),
+        "criterion": lambda v: enum_value(CRITERIA, v, "criterion"),
+        "surface": lambda v: enum_value(SURFACES, v, "surface"),
+        "section_count": int,
+        "search_bound_deg": float,
     }
     values = dict(criterion=criterion, surface=surface, section_count=section_count,
                   search_bound_deg=search_bound_deg)
@@ -180,9 +182,9 @@ def measure(mesh, axis, *, bootstrap_samples=None, bootstrap_seed=None, confiden
     """Measures ``mesh`` oriented by ``axis``; ``refine_options`` (a dict of
     :func:`refine`'s keywords) is the refinement the intervals' bootstrap repeats."""
     setters = {
-        "bootstrap_samples": ("sherd_measure_options_set_bootstrap_samples", int),
-        "bootstrap_seed": ("sherd_measure_options_set_bootstrap_seed", int),
-        "confidence": ("sherd_measure_options_set_confidence", float),
+        "bootstrap_samples": int,
+        "bootstrap_seed": int,
+        "confidence": float,
     }
     values = dict(bootstrap_samples=bootstrap_samples, bootstrap_seed=bootstrap_seed, confidence=confidence)
     out, details = c.SherdMeasurements(), c.SherdBuffer_p()
@@ -198,3 +200,43 @@ def measure(mesh, axis, *, bootstrap_samples=None, bootstrap_seed=None, confiden
                         out.base_radius_mm, out.base_diameter_mm, tuple(out.base_diameter_interval_mm),
                         out.sector_angle_deg, out.sector_percent, out.height_mm, out.wall_thickness_mm,
                         out.capacity_litres, tuple(out.axis_angle_interval_deg), take_json(details))
+
+
+@dataclass
+class Analysis:
+    """What the whole pipeline found for one scan: ``record`` is the JSON object
+    ``sherd orient --json`` prints (as a dict), ``axis`` the final axis in the scan's frame
+    and units (None when ``oriented`` is False; ``reason`` then says why)."""
+
+    axis: Axis
+    oriented: bool
+    reason: str
+    record: dict
+
+
+def _analysis(call, refine_options, millimetres_per_unit):
+    axis, record = c.SherdAxis(), c.SherdBuffer_p()
+    axis.size = ctypes.sizeof(c.SherdAxis)
+    with _refine_options(**(refine_options or {})) as options:
+        status = call(options, float(millimetres_per_unit), ctypes.byref(axis), ctypes.byref(record))
+    if status not in (Status.OK, Status.NEEDS_MANUAL_ORIENTATION):
+        take_buffer(record)
+        raise error_for(status)
+    oriented = status == Status.OK
+    return Analysis(Axis.from_c(axis) if oriented else None, oriented,
+                    "" if oriented else last_error_message(), take_json(record))
+
+
+def process_file(path, *, refine_options=None, millimetres_per_unit=1.0):
+    """Reads, repairs, orients, refines and measures the scan at ``path`` exactly as
+    ``sherd orient PATH --json`` does; ``refine_options`` is a dict of :func:`refine`'s
+    keywords (None: criterion auto on both surfaces). Returns an :class:`Analysis`; a
+    scan that cannot be read raises."""
+    return _analysis(lambda *args: c.lib.sherd_process_file(os.fsencode(path), *args), refine_options,
+                     millimetres_per_unit)
+
+
+def analyse(mesh, *, refine_options=None, millimetres_per_unit=1.0):
+    """Like :func:`process_file` for a :class:`Mesh` in memory (the record's ``file`` is
+    ``"<memory>"``); ``mesh`` is not changed."""
+    return _analysis(lambda *args: c.lib.sherd_analyse(mesh.handle, *args), refine_options, millimetres_per_unit)

@@ -63,15 +63,19 @@ pub struct AnalysisArgs {
     /// Skins the refinement uses.
     #[arg(long, value_enum, default_value = "both")]
     pub surface: SurfaceChoice,
-    /// Units of the scan (files rarely say; scanners mostly write millimetres).
-    #[arg(long, value_enum, default_value = "mm")]
-    pub units: Units,
+    /// Units of the scan. Without it, the unit a comment of the file declares ("comment
+    /// units cm" in a PLY header, "# units cm" in an OBJ), else millimetres (what
+    /// scanners mostly write). Given, it overrides the file.
+    #[arg(long, value_enum)]
+    pub units: Option<Units>,
 }
 
 impl AnalysisArgs {
     /// The library's options for these arguments.
     pub fn pipeline_options(&self) -> Result<PipelineOptions, String> {
-        let mut options = PipelineOptions { millimetres_per_unit: self.units.millimetres(), ..Default::default() };
+        // 0: the file's declared unit, else millimetres (see `PipelineOptions`).
+        let millimetres_per_unit = self.units.map_or(0.0, Units::millimetres);
+        let mut options = PipelineOptions { millimetres_per_unit, ..Default::default() };
         if let Some(text) = &self.manual {
             options.manual_points = Some(parse_three_points(text)?);
         }
@@ -210,25 +214,51 @@ pub fn describe(record: &sherd::pipeline::SherdRecord) -> String {
     text
 }
 
+/// A scan ready to draw or export: in millimetres, with its axis.
+pub struct Oriented {
+    pub mesh: sherd::mesh::Mesh,
+    /// The axis, in millimetres.
+    pub axis: Axis,
+    /// What the pipeline found, when it oriented the scan (`None` with `--axis`).
+    pub record: Option<sherd::pipeline::SherdRecord>,
+    /// Millimetres per unit of the scan file.
+    pub millimetres_per_unit: f64,
+}
+
+impl Oriented {
+    /// What `draw` and `export` print with `--json`: the pipeline's record (status, axis,
+    /// measurements; or only the axis, in the scan's units, when it came from `axis_file`)
+    /// and the files written.
+    pub fn json(&self, scan: &Path, axis_file: Option<&Path>, written: &[&Path]) -> String {
+        let mut value = match &self.record {
+            Some(record) => serde_json::to_value(record).expect("a record always serialises"),
+            None => {
+                let in_scan_units = Axis { point: Point::from(self.axis.point.coords / self.millimetres_per_unit), ..self.axis };
+                serde_json::json!({ "file": scan.display().to_string(), "status": "ok", "axis": in_scan_units.record() })
+            }
+        };
+        value["axis_file"] = serde_json::json!(axis_file.map(|path| path.display().to_string()));
+        value["written"] = written.iter().map(|path| path.display().to_string()).collect();
+        serde_json::to_string_pretty(&value).expect("plain data")
+    }
+}
+
 /// The scan (in millimetres) and its axis: read from `axis_file` when given, else found by
 /// the pipeline. A sherd the pipeline cannot orient is an error here: drawing or
 /// exporting it along a wrong axis would mislead.
-pub fn analyse_or_read_axis(
-    scan: &Path,
-    axis_file: Option<&Path>,
-    analysis: &AnalysisArgs,
-) -> Result<(sherd::mesh::Mesh, Axis), String> {
-    let options = analysis.pipeline_options()?;
-    let mesh = sherd::mesh::io::read_mesh(scan).map_err(|e| e.to_string())?;
+pub fn analyse_or_read_axis(scan: &Path, axis_file: Option<&Path>, analysis: &AnalysisArgs) -> Result<Oriented, String> {
+    let (mesh, report) = sherd::mesh::io::read_mesh_with_report(scan).map_err(|e| e.to_string())?;
+    let options = analysis.pipeline_options()?.with_declared_unit(report.declared_unit);
+    let millimetres_per_unit = options.scale();
     match axis_file {
         Some(axis_file) => {
-            let axis = read_axis(axis_file, options.scale())?;
+            let axis = read_axis(axis_file, millimetres_per_unit)?;
             let mut mesh = mesh;
             mesh.validate().map_err(|e| format!("{}: {e}", scan.display()))?;
             for p in &mut mesh.positions {
-                p.coords *= options.scale();
+                p.coords *= millimetres_per_unit;
             }
-            Ok((mesh, axis))
+            Ok(Oriented { mesh, axis, record: None, millimetres_per_unit })
         }
         None => {
             let result = sherd::pipeline::analyse(mesh, &options).map_err(|e| format!("{}: {e}", scan.display()))?;
@@ -238,8 +268,9 @@ pub fn analyse_or_read_axis(
                     scan.display()
                 ));
             }
+            let record = sherd::pipeline::SherdRecord::from_analysis(scan.display().to_string(), &result, millimetres_per_unit);
             let axis = *result.axis();
-            Ok((result.mesh, axis))
+            Ok(Oriented { mesh: result.mesh, axis, record: Some(record), millimetres_per_unit })
         }
     }
 }

@@ -13,7 +13,7 @@ use crate::common::{analyse_or_read_axis, AnalysisArgs, DrawingArgs};
 #[derive(Args, Debug)]
 #[command(
     about = "Draw a sherd as an archaeological illustration (section left of the axis, exterior right)",
-    after_help = "Examples:\n  sherd draw A011.ply -o A011.svg\n  sherd draw A011.ply --style linear,occlusion,stipple -o A011.pdf --scale 2   # 1:2\n  sherd draw A011.ply --style colour,light -o A011.png --dpi 600\n  sherd orient A011.ply --json > axis.json && sherd draw A011.ply --axis axis.json -o A011.eps\n\n\
+    after_help = "Examples:\n  sherd draw A011.ply -o A011.svg\n  sherd draw A011.ply --style linear,occlusion,stipple -o A011.pdf --scale 2   # 1:2\n  sherd draw A011.ply --style colour,light -o A011.png --dpi 600\n  sherd orient A011.ply --json > axis.json && sherd draw A011.ply --axis axis.json -o A011.eps\n  sherd draw A011.ply -o A011.svg --json    # also prints the axis and measurements\n\n\
 Styles combine: linear (outlines), colour (vertex colours or texture), light\n\
 (directional), occlusion (ambient occlusion), stipple (dots), regularity (distance to\n\
 the ideal vessel, with a legend). The output's extension picks the format."
@@ -31,12 +31,22 @@ pub struct DrawArgs {
     pub drawing: DrawingArgs,
     #[command(flatten)]
     pub analysis: AnalysisArgs,
+    /// Print one JSON object on stdout: the orientation and measurements (as `sherd
+    /// orient --json`), the axis file used, and the files written.
+    #[arg(long)]
+    pub json: bool,
 }
 
 pub fn run(args: DrawArgs) -> Result<ExitCode, String> {
     let draw_options = args.drawing.draw_options()?;
-    let (mesh, axis) = analyse_or_read_axis(&args.scan, args.axis.as_deref(), &args.analysis)?;
-    let drawing = Drawing::build(&mesh, &axis, &draw_options).map_err(|e| e.to_string())?;
+    let mut oriented = analyse_or_read_axis(&args.scan, args.axis.as_deref(), &args.analysis)?;
+    let drawing = Drawing::build(&oriented.mesh, &oriented.axis, &draw_options).map_err(|e| e.to_string())?;
     drawing.write(&args.output).map_err(|e| e.to_string())?;
+    if args.json {
+        if let Some(record) = &mut oriented.record {
+            record.drawing = Some(args.output.display().to_string());
+        }
+        println!("{}", oriented.json(&args.scan, args.axis.as_deref(), &[&args.output]));
+    }
     Ok(ExitCode::SUCCESS)
 }

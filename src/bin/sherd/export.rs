@@ -8,7 +8,7 @@ use std::process::ExitCode;
 use clap::Args;
 
 use sherd::mesh::io::{write_ply, PlyEncoding};
-use sherd::profile::regularity::{distance_to_ideal_vessel, regularity_mesh, ColorMap, ColorScale};
+use sherd::profile::regularity::{ideal_vessel_map, regularity_mesh};
 use sherd::profile::revolve::{oriented_mesh, revolve_profile};
 use sherd::profile::section::{most_informative_angle, profile_section};
 
@@ -20,7 +20,7 @@ const REVOLUTION_SEGMENTS: usize = 180;
 #[derive(Args, Debug)]
 #[command(
     about = "Write the oriented model, the reconstruction by revolution, the profile or the regularity map",
-    after_help = "Examples:\n  sherd export A011.ply --oriented A011.oriented.ply\n  sherd export A011.ply --reconstruction vessel.ply --profile profile.csv\n  sherd orient A011.ply --json > axis.json && sherd export A011.ply --axis axis.json --regularity regularity.ply\n\n\
+    after_help = "Examples:\n  sherd export A011.ply --oriented A011.oriented.ply\n  sherd export A011.ply --reconstruction vessel.ply --profile profile.csv\n  sherd orient A011.ply --json > axis.json && sherd export A011.ply --axis axis.json --regularity regularity.ply\n  sherd export A011.ply --oriented o.ply --json    # also prints the axis and measurements\n\n\
 The oriented model has the axis on z, rim up, in millimetres. The profile CSV lists\n\
 r_mm,z_mm per point of each curve of the section through the axis."
 )]
@@ -47,17 +47,22 @@ pub struct ExportArgs {
     pub ascii: bool,
     #[command(flatten)]
     pub analysis: AnalysisArgs,
+    /// Print one JSON object on stdout: the orientation and measurements (as `sherd
+    /// orient --json`), the axis file used, and the files written.
+    #[arg(long)]
+    pub json: bool,
 }
 
 pub fn run(args: ExportArgs) -> Result<ExitCode, String> {
     if args.oriented.is_none() && args.reconstruction.is_none() && args.profile.is_none() && args.regularity.is_none() {
         return Err("nothing to export: give --oriented, --reconstruction, --profile or --regularity".into());
     }
-    let (mesh, axis) = analyse_or_read_axis(&args.scan, args.axis.as_deref(), &args.analysis)?;
+    let oriented = analyse_or_read_axis(&args.scan, args.axis.as_deref(), &args.analysis)?;
+    let (mesh, axis) = (&oriented.mesh, &oriented.axis);
     let encoding = if args.ascii { PlyEncoding::Ascii } else { PlyEncoding::BinaryLittleEndian };
-    let section = profile_section(&mesh, &axis, most_informative_angle(&mesh, &axis));
+    let section = profile_section(mesh, axis, most_informative_angle(mesh, axis));
     if let Some(path) = &args.oriented {
-        write_ply(path, &oriented_mesh(&mesh, &axis), encoding).map_err(|e| e.to_string())?;
+        write_ply(path, &oriented_mesh(mesh, axis), encoding).map_err(|e| e.to_string())?;
     }
     if let Some(path) = &args.reconstruction {
         let vessel = revolve_profile(&section, REVOLUTION_SEGMENTS).map_err(|e| e.to_string())?;
@@ -67,10 +72,14 @@ pub fn run(args: ExportArgs) -> Result<ExitCode, String> {
         section.write_csv(path).map_err(|e| e.to_string())?;
     }
     if let Some(path) = &args.regularity {
-        let distances = distance_to_ideal_vessel(&mesh, &axis, &section).map_err(|e| e.to_string())?;
-        let map = ColorMap::fitted(&distances, ColorScale::Diverging, "distance to the ideal vessel", "mm");
-        let coloured = regularity_mesh(&oriented_mesh(&mesh, &axis), &distances, &map).map_err(|e| e.to_string())?;
+        let (distances, map) = ideal_vessel_map(mesh, axis, &section).map_err(|e| e.to_string())?;
+        let coloured = regularity_mesh(&oriented_mesh(mesh, axis), &distances, &map).map_err(|e| e.to_string())?;
         write_ply(path, &coloured, encoding).map_err(|e| e.to_string())?;
+    }
+    if args.json {
+        let written: Vec<&std::path::Path> =
+            [&args.oriented, &args.reconstruction, &args.profile, &args.regularity].into_iter().flatten().map(|p| p.as_path()).collect();
+        println!("{}", oriented.json(&args.scan, args.axis.as_deref(), &written));
     }
     Ok(ExitCode::SUCCESS)
 }

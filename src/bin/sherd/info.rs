@@ -9,6 +9,12 @@ use sherd::mesh::repair::{RepairOptions, RepairReport, repair};
 
 /// Arguments of `sherd info`.
 #[derive(clap::Args)]
+#[command(
+    after_help = "Examples:\n  sherd info A011.ply\n  sherd info scan.obj --json | jq .repair\n  sherd info scan.ply --merge-tolerance-mm 0.01 --keep-largest-component\n\n\
+The scan is described as read (counts, bounding box, units guess, normals, colours,\n\
+texture), then repaired as every processing command repairs it, and what repair\n\
+changed is listed. A file that cannot be read exits with 1 and says where it broke."
+)]
 pub struct InfoArgs {
     /// The scan: .ply, .obj, .stl, .xyz or .pts.
     pub scan: PathBuf,
@@ -109,8 +115,10 @@ fn text(info: &Info) -> String {
         out += &format!("bounds:     {} to {}\n", triple(bounds.min), triple(bounds.max));
         out += &format!("size:       {:.3} x {:.3} x {:.3}\n", bounds.size[0], bounds.size[1], bounds.size[2]);
     }
-    if let Some(units) = &info.units_guess {
-        out += &format!("units:      {} (guess; {})\n", units.unit.symbol(), units.reason);
+    match (info.read.declared_unit, &info.units_guess) {
+        (Some(unit), _) => out += &format!("units:      {} (declared in the file)\n", unit.symbol()),
+        (None, Some(units)) => out += &format!("units:      {} (guess; {})\n", units.unit.symbol(), units.reason),
+        (None, None) => {}
     }
     out += &format!("normals:    {}\n", yes_no(info.has_normals));
     out += &format!("colours:    {}\n", yes_no(info.has_colours));

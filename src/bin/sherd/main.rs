@@ -28,7 +28,7 @@ struct Cli {
 enum Command {
     /// Describe a scan: counts, bounding box, units guess, attributes, what repair did.
     Info(info::InfoArgs),
-    /// Write synthetic sherds with known axes (NAME.ply + NAME.truth.json).
+    /// Break a synthetic vessel into 20-40 sherds with known axes (NAME.ply + NAME.truth.json).
     Synth(synth::SynthArgs),
     /// Find the rotation axis, rim/base diameter and preserved sector of a sherd.
     Orient(orient::OrientArgs),
@@ -43,6 +43,12 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    // Rust ignores SIGPIPE, so `sherd orient x.ply --json | head` would panic in println!
+    // once head exits; like every Unix filter, sherd should end quietly instead.
+    #[cfg(unix)]
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = Cli::parse();
     let library = |result: sherd::Result<()>| result.map(|()| ExitCode::SUCCESS).map_err(|e| e.to_string());
     let result = match cli.command {

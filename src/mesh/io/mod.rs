@@ -25,7 +25,7 @@ use crate::{Error, Result};
 
 pub use ply_read::{read_ply_from, read_ply_from_with_report};
 pub use ply_write::{PlyEncoding, write_ply, write_ply_to};
-pub use units::{LengthUnit, UnitsGuess, guess_units};
+pub use units::{LengthUnit, UnitsGuess, guess_units, unit_declared_in};
 
 /// What a reader did besides producing the mesh: the format it recognised and the
 /// warnings about what it skipped or could not load.
@@ -39,6 +39,8 @@ pub struct ReadReport {
     pub degenerate_faces_dropped: usize,
     /// Human-readable warnings: skipped elements and properties, missing texture...
     pub warnings: Vec<String>,
+    /// The length unit a comment of the file declares ([`unit_declared_in`]).
+    pub declared_unit: Option<LengthUnit>,
 }
 
 impl ReadReport {

@@ -109,7 +109,13 @@ impl Parser<'_> {
     }
 
     fn line(&mut self, raw: &[u8]) -> Result<()> {
-        let raw = raw.split(|&b| b == b'#').next().unwrap_or_default();
+        let mut parts = raw.splitn(2, |&b| b == b'#');
+        let raw = parts.next().unwrap_or_default();
+        if let Some(comment) = parts.next()
+            && self.report.declared_unit.is_none()
+        {
+            self.report.declared_unit = super::unit_declared_in(&String::from_utf8_lossy(comment));
+        }
         let words: Vec<&[u8]> = raw.split(|b| b.is_ascii_whitespace()).filter(|w| !w.is_empty()).collect();
         let Some((&keyword, arguments)) = words.split_first() else { return Ok(()) };
         match keyword {

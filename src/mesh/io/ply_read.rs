@@ -134,6 +134,8 @@ struct Header {
     encoding: Encoding,
     elements: Vec<Element>,
     texture_files: Vec<String>,
+    /// The unit the first comment naming one declares.
+    declared_unit: Option<super::LengthUnit>,
     /// Byte offset of the body.
     body_start: usize,
     /// Number of header lines, so that ascii body lines are numbered as in an editor.
@@ -147,6 +149,7 @@ fn parse_header(bytes: &[u8], name: &str) -> Result<Header> {
     let mut encoding = None;
     let mut elements: Vec<Element> = Vec::new();
     let mut texture_files = Vec::new();
+    let mut declared_unit = None;
     loop {
         line_number += 1;
         let Some(length) = bytes[position..].iter().position(|&b| b == b'\n') else {
@@ -173,9 +176,10 @@ fn parse_header(bytes: &[u8], name: &str) -> Result<Header> {
         let mut words = line.split_whitespace();
         let keyword = words.next().unwrap_or("");
         match keyword {
-            "" | "obj_info" => {}
-            "comment" => {
+            "" => {}
+            "comment" | "obj_info" => {
                 let rest: Vec<&str> = words.collect();
+                declared_unit = declared_unit.or_else(|| super::unit_declared_in(&rest.join(" ")));
                 if rest.first().is_some_and(|w| w.eq_ignore_ascii_case("TextureFile")) && rest.len() > 1 {
                     texture_files.push(rest[1..].join(" "));
                 }
@@ -227,7 +231,7 @@ fn parse_header(bytes: &[u8], name: &str) -> Result<Header> {
         }
     }
     let encoding = encoding.ok_or_else(|| header_error(2, "the header has no format line".into()))?;
-    Ok(Header { encoding, elements, texture_files, body_start: position, line_count: line_number })
+    Ok(Header { encoding, elements, texture_files, declared_unit, body_start: position, line_count: line_number })
 }
 
 /// Why a body value could not be read.
@@ -919,6 +923,7 @@ pub(super) fn parse_ply(bytes: &[u8], name: &str, folder: Option<&Path>) -> Resu
         builder.report.warn(format!("data after the last element ignored, from {location}"));
     }
     let Builder { mut mesh, mut report, vertex_uvs, .. } = builder;
+    report.declared_unit = header.declared_unit;
     if mesh.corner_uvs.is_none() {
         if let Some(uvs) = vertex_uvs {
             mesh.corner_uvs = Some(mesh.triangles.iter().flat_map(|t| t.map(|v| uvs[v as usize])).collect());

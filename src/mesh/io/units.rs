@@ -31,6 +31,34 @@ impl LengthUnit {
     }
 }
 
+impl LengthUnit {
+    /// Millimetres in one unit; `None` for [`LengthUnit::Unknown`].
+    pub fn millimetres(self) -> Option<f64> {
+        match self {
+            LengthUnit::Millimetres => Some(1.0),
+            LengthUnit::Centimetres => Some(10.0),
+            LengthUnit::Metres => Some(1000.0),
+            LengthUnit::Unknown => None,
+        }
+    }
+}
+
+/// The unit a file's comment declares, as some scanners and tools write it in a PLY
+/// `comment` or `obj_info` line or an OBJ `#` comment: "units mm", "unit: millimeters",
+/// "length_unit = cm", "Units: m". `None` when the comment names no unit.
+pub fn unit_declared_in(comment: &str) -> Option<LengthUnit> {
+    let lowered = comment.to_ascii_lowercase();
+    let words: Vec<&str> =
+        lowered.split(|c: char| c.is_whitespace() || matches!(c, ':' | '=' | ',' | ';' | '"' | '\'')).filter(|w| !w.is_empty()).collect();
+    let at = words.iter().position(|w| matches!(*w, "unit" | "units" | "length_unit" | "length_units" | "lengthunit"))?;
+    match *words.get(at + 1)? {
+        "mm" | "millimeter" | "millimeters" | "millimetre" | "millimetres" => Some(LengthUnit::Millimetres),
+        "cm" | "centimeter" | "centimeters" | "centimetre" | "centimetres" => Some(LengthUnit::Centimetres),
+        "m" | "meter" | "meters" | "metre" | "metres" => Some(LengthUnit::Metres),
+        _ => None,
+    }
+}
+
 /// The unit guessed for a scan, with the extent it was guessed from and why.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct UnitsGuess {
@@ -68,6 +96,17 @@ mod tests {
 
     fn segment(length: f64) -> Mesh {
         Mesh::new(vec![Point::origin(), Point::new(0.0, length, length / 3.0)], Vec::new())
+    }
+
+    #[test]
+    fn declared_units_are_read_from_comments() {
+        assert_eq!(unit_declared_in("units mm"), Some(LengthUnit::Millimetres));
+        assert_eq!(unit_declared_in("Unit: Centimeters"), Some(LengthUnit::Centimetres));
+        assert_eq!(unit_declared_in("length_unit = m"), Some(LengthUnit::Metres));
+        assert_eq!(unit_declared_in("Created by sherd 0.1.0"), None);
+        assert_eq!(unit_declared_in("units"), None);
+        assert_eq!(unit_declared_in("units furlongs"), None);
+        assert_eq!(LengthUnit::Centimetres.millimetres(), Some(10.0));
     }
 
     #[test]

@@ -1,0 +1,52 @@
+//! The pipeline's decimated copy of a large scan: the pre-orientation and the bootstrap
+//! of the intervals work on it, the refinement only when `refine_max_faces` asks, and the
+//! measurements never (they are taken on the full-resolution mesh).
+
+use sherd::orient::{decimated_copy, OrientOptions};
+use sherd::pipeline::{analyse, PipelineOptions};
+use sherd::refine::{refine, RefineOptions};
+use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
+
+fn options() -> PipelineOptions {
+    PipelineOptions { refine: Some(RefineOptions::default()), ..Default::default() }
+}
+
+#[test]
+fn refinement_and_measurements_use_the_full_mesh_and_the_bootstrap_the_copy() {
+    // A rim piece of ~50k faces, more than the 20k-face working copy.
+    let sherd = synthetic_sherd(0, &SherdOptions { target_faces: 50_000, ..SherdOptions::for_part(SherdPart::Rim) });
+    let copy_faces = 2 * OrientOptions::default().target_vertex_count;
+    assert!(sherd.mesh.face_count() > 2 * copy_faces, "{} faces", sherd.mesh.face_count());
+
+    let default = analyse(sherd.mesh.clone(), &options()).unwrap();
+    assert!(default.is_oriented(), "{:?}", default.orientation.verdict);
+    let full_bootstrap = analyse(sherd.mesh.clone(), &PipelineOptions { bootstrap_on_full_resolution: true, ..options() }).unwrap();
+    let on_copy = analyse(sherd.mesh.clone(), &PipelineOptions { refine_max_faces: Some(copy_faces), ..options() }).unwrap();
+
+    // The pre-orientation works on the copy whatever the options.
+    assert_eq!(default.orientation.report.working_vertex_count, on_copy.orientation.report.working_vertex_count);
+    assert!(default.orientation.report.working_vertex_count < default.mesh.vertex_count() / 2);
+    assert_eq!(default.orientation.axis, full_bootstrap.orientation.axis);
+
+    // By default the refinement runs on the full mesh: the same axis as when everything
+    // does, and as refining the repaired mesh directly.
+    assert_eq!(default.axis(), full_bootstrap.axis());
+    let start = &default.orientation.axis;
+    assert_eq!(&refine(&default.mesh, start, &RefineOptions::default()).unwrap().axis, default.axis());
+    // Asked to, it runs on the copy.
+    let copy = decimated_copy(&on_copy.mesh, &OrientOptions::default()).unwrap().expect("a copy of a 50k-face mesh");
+    assert_eq!(copy.face_count(), copy_faces);
+    assert_eq!(&refine(&copy, start, &RefineOptions::default()).unwrap().axis, on_copy.axis());
+    let apart_deg = on_copy.axis().line_angle_to_deg(default.axis());
+    assert!(apart_deg < 1.0, "refined on the copy {apart_deg} deg from the full-resolution refinement");
+
+    // The measurements are taken on the full mesh: only the intervals depend on where the
+    // bootstrap ran, and both give one.
+    let (m, m_full) = (default.measurements.as_ref().unwrap(), full_bootstrap.measurements.as_ref().unwrap());
+    assert_eq!(m.sector_angle_deg, m_full.sector_angle_deg);
+    assert_eq!(m.height_mm, m_full.height_mm);
+    assert_eq!(m.rim_radius_mm, m_full.rim_radius_mm);
+    assert_eq!(m.wall_thickness_mm, m_full.wall_thickness_mm);
+    let (interval, interval_full) = (m.axis_angle_interval_deg.unwrap(), m_full.axis_angle_interval_deg.unwrap());
+    assert!(interval[1] > 0.0 && interval_full[1] > 0.0, "{interval:?} {interval_full:?}");
+}

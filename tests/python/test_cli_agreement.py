@@ -1,0 +1,126 @@
+"""The Python binding gives the command-line tool's results on the same scan: the record
+of ``sherd.process_file`` is the one ``sherd orient --json`` prints, and the pipeline
+called step by step (read, repair, orient, refine, measure) finds the same axis and
+measurements; where the tool fails, the binding raises with the same message. On a
+synthetic sherd and on the real scan ../shared/data/dacord/A011.ply."""
+
+import json
+import math
+import subprocess
+
+import numpy as np
+import pytest
+
+import sherd
+from conftest import ROOT, sherd_command
+
+REAL_SCAN = ROOT.parent / "shared" / "data" / "dacord" / "A011.ply"
+#: Fields of the record that are measured figures (timings differ from run to run).
+FIGURES = ["rim_radius_mm", "rim_diameter_mm", "rim_diameter_interval_mm", "base_diameter_mm",
+           "base_diameter_interval_mm", "sector_angle_deg", "sector_percent", "height_mm", "wall_thickness_mm",
+           "capacity_litres", "residual_mm", "axis_angle_interval_deg"]
+
+
+@pytest.fixture(scope="module", params=["synthetic", "A011"])
+def scan(request, tmp_path_factory):
+    if request.param == "A011":
+        if not REAL_SCAN.is_file():
+            pytest.skip(f"{REAL_SCAN} is absent (../shared/data)")
+        return REAL_SCAN
+    # Seed 13: a rim piece the pipeline orients (the README's demo sherd).
+    mesh, _, _ = sherd.synthetic_sherd(13, "rim", target_faces=12000)
+    path = tmp_path_factory.mktemp("cli") / "seed13.ply"
+    mesh.write_ply(path)
+    return path
+
+
+class CommandFailed(Exception):
+    """``sherd orient`` exited non-zero; the message is its error without the ``sherd: ``."""
+
+
+def run_cli(scan):
+    """The record ``sherd orient SCAN --json`` prints, or :class:`CommandFailed`."""
+    run = subprocess.run([str(sherd_command()), "orient", str(scan), "--json"], capture_output=True, text=True)
+    if run.returncode != 0:
+        assert run.stdout == "" and run.stderr.startswith("sherd: "), (run.stdout, run.stderr)
+        raise CommandFailed(run.stderr.strip()[len("sherd: "):])
+    return json.loads(run.stdout)
+
+
+@pytest.fixture(scope="module")
+def cli_record(scan):
+    try:
+        return run_cli(scan)
+    except CommandFailed as failure:
+        return failure
+
+
+def fails_like_the_cli(cli_record, call):
+    """True when the CLI failed on the scan and ``call`` raises the same error (the
+    binding's message names the C function where the CLI's says ``sherd``)."""
+    if not isinstance(cli_record, CommandFailed):
+        return False
+    with pytest.raises(sherd.SherdError) as raised:
+        call()
+    assert raised.value.message.split(": ", 1)[1] == str(cli_record)
+    return True
+
+
+def assert_close(actual, expected, what):
+    if expected is None:
+        assert actual is None, f"{what}: {actual} where the CLI has null"
+        return
+    np.testing.assert_allclose(np.array(actual, dtype=float), np.array(expected, dtype=float), rtol=1e-6,
+                               atol=1e-9, err_msg=what)
+
+
+def test_process_file_gives_the_cli_record(scan, cli_record):
+    if fails_like_the_cli(cli_record, lambda: sherd.process_file(scan)):
+        return
+    analysis = sherd.process_file(scan)
+    record = analysis.record
+    assert analysis.oriented == (cli_record["status"] == "ok")
+    for key in ("file", "status", "reason", "error", "method"):
+        assert record[key] == cli_record[key], key
+    for key in FIGURES:
+        assert_close(record[key], cli_record[key], key)
+    if analysis.oriented:
+        assert_close(analysis.axis.point, cli_record["axis"]["point"], "axis point")
+        assert_close(analysis.axis.direction, cli_record["axis"]["direction"], "axis direction")
+    else:
+        assert analysis.axis is None and analysis.reason
+
+
+def test_the_pipeline_step_by_step_agrees_with_the_cli(scan, cli_record):
+    mesh = sherd.Mesh.read(scan)
+    mesh.repair()
+    orientation = sherd.orient_automatic(mesh)
+    assert orientation.oriented == (isinstance(cli_record, CommandFailed) or cli_record["status"] == "ok")
+    if not orientation.oriented:
+        assert cli_record["reason"] in orientation.reason
+        return
+    refine = lambda: sherd.refine(mesh, orientation.axis, criterion="auto", surface="both")  # noqa: E731
+    if fails_like_the_cli(cli_record, refine):
+        return
+    refined = refine()
+    cli_axis = sherd.Axis(cli_record["axis"]["point"], cli_record["axis"]["direction"])
+    angle = math.degrees(math.acos(min(1.0, float(refined.axis.direction @ cli_axis.direction))))
+    assert angle < 1e-6, f"the binding's axis is {angle} deg from the CLI's"
+    measured = sherd.measure(mesh, refined.axis, refine_options={"criterion": "auto", "surface": "both"})
+    for key in ("rim_diameter_mm", "rim_diameter_interval_mm", "sector_angle_deg", "height_mm"):
+        value = getattr(measured, key)
+        expected = cli_record[key]
+        if expected is None:
+            assert np.all(np.isnan(value)), key
+        else:
+            assert_close(value, expected, key)
+
+
+def test_analyse_in_memory_matches_the_file(scan, cli_record):
+    if fails_like_the_cli(cli_record, lambda: sherd.analyse(sherd.Mesh.read(scan))):
+        return
+    analysis = sherd.analyse(sherd.Mesh.read(scan))
+    assert analysis.record["file"] == "<memory>"
+    assert analysis.record["status"] == cli_record["status"]
+    for key in FIGURES:
+        assert_close(analysis.record[key], cli_record[key], key)
