@@ -190,7 +190,7 @@ pub fn process_file(path: &Path, options: &PipelineOptions, drawing: Option<(&Dr
         Ok(analysis) => analysis,
         Err(error) => return SherdRecord::failed(file, &error),
     };
-    let mut record = SherdRecord::from_analysis(file, &analysis, analysis.millimetres_per_unit);
+    let mut record = SherdRecord::from_analysis(file, &analysis);
     if let (Some((draw_options, output)), true) = (drawing, analysis.is_oriented()) {
         let clock = Instant::now();
         // The measurements just made (with their intervals) label the drawing, rather
@@ -274,9 +274,8 @@ impl SherdRecord {
         SherdRecord { file, status: STATUS_ERROR.into(), error: Some(error.to_string()), ..Default::default() }
     }
 
-    /// The record of an analysis; `millimetres_per_unit` brings the axis back to the
-    /// scan's own units.
-    pub fn from_analysis(file: String, analysis: &Analysis, millimetres_per_unit: f64) -> Self {
+    /// The record of an analysis, its axis brought back to the scan's own units.
+    pub fn from_analysis(file: String, analysis: &Analysis) -> Self {
         let orientation = &analysis.orientation;
         let mut record = SherdRecord { file, timings: analysis.timings, ..Default::default() };
         let mut method = orientation.report.method.clone();
@@ -293,7 +292,7 @@ impl SherdRecord {
             }
         }
         let axis = analysis.axis();
-        let axis_in_scan_units = Axis { point: Point::from(axis.point.coords / millimetres_per_unit), direction: axis.direction };
+        let axis_in_scan_units = Axis { point: Point::from(axis.point.coords / analysis.millimetres_per_unit), direction: axis.direction };
         record.axis = Some(axis_in_scan_units.record());
         record.residual_mm = Some(match &analysis.refinement {
             Some(refinement) => refinement.report.residual_mm,

@@ -56,7 +56,7 @@ unsafe fn hand_out_analysis(
             return Err(error.into());
         }
     };
-    let record = SherdRecord::from_analysis(file, &analysis, analysis.millimetres_per_unit);
+    let record = SherdRecord::from_analysis(file, &analysis);
     if let (false, Some(axis)) = (out_axis.is_null(), record.axis.as_ref().and_then(Axis::from_record)) {
         unsafe { write_sized(out_axis, SherdAxis::from_axis(&axis), "out_axis") }?;
     }

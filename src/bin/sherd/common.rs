@@ -268,7 +268,7 @@ pub fn analyse_or_read_axis(scan: &Path, axis_file: Option<&Path>, analysis: &An
                     scan.display()
                 ));
             }
-            let record = sherd::pipeline::SherdRecord::from_analysis(scan.display().to_string(), &result, millimetres_per_unit);
+            let record = sherd::pipeline::SherdRecord::from_analysis(scan.display().to_string(), &result);
             let axis = *result.axis();
             Ok(Oriented { mesh: result.mesh, axis, record: Some(record), millimetres_per_unit })
         }

@@ -62,7 +62,7 @@ pub fn run(args: DemoArgs) -> Result<ExitCode, String> {
 
     let pipeline_options = args.analysis.pipeline_options()?;
     let analysis = pipeline::analyse(sherd.mesh.clone(), &pipeline_options).map_err(|e| e.to_string())?;
-    let mut record = SherdRecord::from_analysis(scan.display().to_string(), &analysis, 1.0);
+    let mut record = SherdRecord::from_analysis(scan.display().to_string(), &analysis);
     let mut written = vec![scan.clone(), args.output.join("demo.truth.json")];
     let mut axis_error = None;
     if analysis.is_oriented() {
