@@ -251,3 +251,27 @@ fn profile_criterion_keeps_a_well_oriented_rim() {
     let angle = refined.axis.line_angle_to_deg(&sherd.truth.axis);
     assert!(angle < 2.0, "profile criterion: {angle} deg from the truth (start {} deg)", start.line_angle_to_deg(&sherd.truth.axis));
 }
+
+#[test]
+fn pareto_search_stays_within_the_tilt_bound() {
+    // The truth lies 12 degrees off the start, outside a 5-degree cone: every front point
+    // and the chosen axis must stay inside the cone (the box's corners reach 7.1 degrees),
+    // and the search must still move towards the truth.
+    let mesh = fixture(40.0, 45.0, true, 0.0);
+    let (moved, truth, start) = placed(&mesh, 5, 12.0, 1.0);
+    let bound_deg = 5.0;
+    let options = RefineOptions { criterion: Criterion::Pareto, search_bound_deg: bound_deg, ..Default::default() };
+    let result = refine(&moved, &start, &options).unwrap();
+    let front = result.pareto_front.as_ref().expect("the Pareto criterion reports its front");
+    assert!(!front.is_empty());
+    for p in front {
+        let norm_deg = p.tilt_x_deg.hypot(p.tilt_y_deg);
+        let (x, y) = (p.tilt_x_deg, p.tilt_y_deg);
+        assert!(norm_deg <= bound_deg + 1e-9, "front point at tilts {x:.3}, {y:.3} deg ({norm_deg:.3} deg)");
+    }
+    let moved_deg = result.axis.line_angle_to_deg(&start);
+    assert!(moved_deg <= bound_deg + 1e-9, "the chosen axis is {moved_deg} deg off the start");
+    let start_error_deg = start.line_angle_to_deg(&truth);
+    let error_deg = result.axis.line_angle_to_deg(&truth);
+    assert!(error_deg < start_error_deg - 3.0, "{error_deg} deg off the truth, the start {start_error_deg} deg");
+}

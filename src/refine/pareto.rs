@@ -10,10 +10,10 @@
 //! too small an arc are dropped. The shifts are not searched: the axis passes through the
 //! weighted mean centre.
 //!
-//! The search samples the whole bounded box of tilts (the original's NSGA-II with 20
-//! individuals over 20 generations explores it poorly), then repeatedly samples finer
-//! grids around the current non-dominated set. The chosen solution is the knee of the
-//! front by default.
+//! The search samples the whole cone of tilts within the bound around the start axis (the
+//! original's NSGA-II with 20 individuals over 20 generations explores it poorly), then
+//! repeatedly samples finer grids around the current non-dominated set, never leaving the
+//! cone. The chosen solution is the knee of the front by default.
 
 use serde::{Deserialize, Serialize};
 
@@ -208,15 +208,23 @@ pub struct ParetoSearch {
     pub evaluations: usize,
 }
 
-/// Samples the tilt box of half-width `bound_rad` about `centre` (tilts), then refines
-/// the front on finer grids.
+/// Whether the tilts `(tilt_x_rad, tilt_y_rad)` lie within the cone of half-angle
+/// `bound_rad` about `centre`. The norm of the two tilts is what the other criteria's
+/// search bounds too (`objective::minimize`), and it is never smaller than the angle
+/// between the axes, so a point inside is never more than `bound_rad` off the start.
+pub fn within_bound(centre: [f64; 2], tilt_x_rad: f64, tilt_y_rad: f64, bound_rad: f64) -> bool {
+    (tilt_x_rad - centre[0]).hypot(tilt_y_rad - centre[1]) <= bound_rad + 1e-12
+}
+
+/// Samples the cone of tilts of half-angle `bound_rad` about `centre` (tilts) on a
+/// grid, then refines the front on finer grids; every sample lies in the cone.
 pub fn search(surface: &PreparedSurface, centre: [f64; 2], bound_rad: f64, options: &ParetoOptions) -> Option<ParetoSearch> {
     let n = options.grid_samples_per_side.max(3);
     let step = 2.0 * bound_rad / (n - 1) as f64;
     let mut samples = Vec::new();
     let mut evaluations = 0;
     let mut sample = |tx: f64, ty: f64, samples: &mut Vec<ParetoPoint>| {
-        if (tx - centre[0]).hypot(ty - centre[1]) > bound_rad * std::f64::consts::SQRT_2 + 1e-12 {
+        if !within_bound(centre, tx, ty, bound_rad) {
             return;
         }
         evaluations += 1;
