@@ -219,7 +219,7 @@ fn split_csv(line: &str) -> Vec<String> {
 }
 
 #[test]
-fn batch_reports_every_sherd_keeps_going_past_a_broken_file_and_resumes() {
+fn batch_reports_every_sherd_keeps_going_past_a_broken_file_exits_1_and_resumes() {
     let dir = tempfile::tempdir().unwrap();
     let input = dir.path().join("scans");
     let scans = synth(&input, &["--seed", "30", "--count", "3", "--part", "rim", "--faces", "20000"]);
@@ -227,7 +227,7 @@ fn batch_reports_every_sherd_keeps_going_past_a_broken_file_and_resumes() {
         .unwrap();
     let output = dir.path().join("out");
     let run = sherd().arg("batch").arg(&input).arg("-o").arg(&output).args(["--jobs", "2"]).output().unwrap();
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert_eq!(run.status.code(), Some(1), "an error row makes the exit code 1: {}", String::from_utf8_lossy(&run.stderr));
     let rows = csv_rows(&output.join("report.csv"));
     assert_eq!(rows.len(), scans.len() + 1, "one row per file");
     let broken = rows.iter().find(|r| r[0].ends_with("zz-broken.ply")).expect("the broken file has a row");
@@ -251,10 +251,15 @@ fn batch_reports_every_sherd_keeps_going_past_a_broken_file_and_resumes() {
     assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
 
     let again = sherd().arg("batch").arg(&input).arg("-o").arg(&output).output().unwrap();
-    assert!(again.status.success());
+    assert_eq!(again.status.code(), Some(1), "the resumed report still holds the error row");
     let stderr = String::from_utf8_lossy(&again.stderr);
     assert!(stderr.contains(&format!("{} sherds already done", scans.len() + 1)), "{stderr}");
     assert_eq!(csv_rows(&output.join("report.csv")).len(), rows.len());
+
+    // The good scans alone: every row an answer (ok or needs_manual_orientation), exit 0.
+    let good = sherd().arg("batch").args(&scans).arg("-o").arg(&output).output().unwrap();
+    assert!(good.status.success(), "{}", String::from_utf8_lossy(&good.stderr));
+    assert_eq!(csv_rows(&output.join("report.csv")).len(), scans.len());
 }
 
 #[test]

@@ -29,7 +29,10 @@ const SCAN_EXTENSIONS: [&str; 5] = ["ply", "obj", "stl", "xyz", "pts"];
     about = "Orient, measure and draw every scan of a folder or a list of files",
     after_help = "Examples:\n  sherd batch excavation/ -o results/\n  sherd batch a.ply b.ply -o results/ --jobs 2 --format png\n  sherd batch excavation/ -o results/ --force     # redo sherds already done\n\n\
 The folder OUTDIR receives a drawing per sherd, NAME.result.json per sherd, report.csv and\n\
-report.json. A rerun skips the sherds already done, so an interrupted batch resumes."
+report.json. A rerun skips the sherds already done, so an interrupted batch resumes.\n\n\
+Exit code: 0 when every row of the report is an answer (any status but an error:\n\
+ok, needs_manual_orientation, ...); 1 when any row is an error (or a scan has no row),\n\
+after every scan was processed and the reports written complete; 2 for bad arguments."
 )]
 pub struct BatchArgs {
     /// Scan files, or folders searched (recursively) for .ply .obj .stl .xyz .pts files.
@@ -99,7 +102,7 @@ pub fn run(args: BatchArgs) -> Result<ExitCode, String> {
         })
         .collect();
     write_reports(&args.output, &records)?;
-    let failures: Vec<&SherdRecord> = records.iter().filter(|r| r.error.is_some()).collect();
+    let failures: Vec<&SherdRecord> = records.iter().filter(|r| is_error_row(r)).collect();
     eprintln!(
         "{} sherds in {:.1} s ({} done before, skipped); {} ok, {} need manual orientation, {} errors; reports in {}",
         records.len(),
@@ -113,7 +116,20 @@ pub fn run(args: BatchArgs) -> Result<ExitCode, String> {
     for failure in &failures {
         eprintln!("  {}: {}", failure.file, failure.error.as_deref().unwrap_or(""));
     }
-    Ok(ExitCode::SUCCESS)
+    let without_row = scans.len() - records.len();
+    if without_row > 0 {
+        eprintln!("  {without_row} scans have no row (their result could not be written or read back)");
+    }
+    // A script running a batch learns from the exit code alone whether a row needs a
+    // look; only errors count: every other status (needs_manual_orientation, ...) is an
+    // answer, as for `sherd orient`.
+    Ok(if failures.is_empty() && without_row == 0 { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+}
+
+/// An error row: the report writes its status as `error: <reason>`; every other status
+/// is an answer about the sherd.
+fn is_error_row(record: &SherdRecord) -> bool {
+    record.error.is_some() || record.status.starts_with(pipeline::STATUS_ERROR)
 }
 
 /// The scan files among `inputs`, folders walked recursively, in a stable order.
