@@ -7,10 +7,12 @@
 //! Everything is first placed in object millimetres (x right with the axis at 0, z up);
 //! [`Canvas::finish`] maps it to paper millimetres at the publication scale.
 
+use rayon::prelude::*;
+
 use crate::draw::model::{helvetica_width_mm, Anchor, Dots, Drawing, Element, Group, Image, Path, Rgb, Segment, Stroke, Text};
 use crate::draw::font::text_width_mm;
 use crate::draw::stipple::stipple_dots;
-use crate::draw::view::{crease_segments, outline_loops, render_view, Shading, Surface, View};
+use crate::draw::view::{crease_edges, outline_loops, render_view, visible_creases, Shading, Surface, View};
 use crate::draw::{DrawOptions, Placement, RegularityKind, SectionFill};
 use crate::mesh::normals::{compute_vertex_normals, NormalWeighting};
 use crate::mesh::occlusion::ambient_occlusion;
@@ -137,7 +139,7 @@ impl Canvas {
 /// axis: at most twice the largest radius wide and the height tall.
 fn check_view_size(oriented: &[crate::mesh::Point], options: &DrawOptions) -> Result<()> {
     let pixel_mm = options.scale_denominator as f64 * 25.4 / options.dpi;
-    let radius_mm = oriented.iter().map(|p| p.x.hypot(p.y)).fold(0.0, f64::max);
+    let radius_mm = oriented.iter().map(|p| p.x * p.x + p.y * p.y).fold(0.0, f64::max).sqrt();
     let (low, high) = oriented.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.z), h.max(p.z)));
     let width_px = 2.0 * radius_mm / pixel_mm + 5.0;
     let height_px = (high - low) / pixel_mm + 5.0;
@@ -162,13 +164,17 @@ pub(crate) fn build(mesh: &Mesh, axis: &Axis, options: &DrawOptions) -> Result<D
     }
     options.check()?;
     let frame = oriented_frame(mesh, axis);
-    let oriented: Vec<_> = mesh.positions.iter().map(|p| frame * p).collect();
+    let oriented: Vec<_> = mesh.positions.par_iter().map(|p| frame * p).collect();
     check_view_size(&oriented, options)?;
+    let computed_normals;
     let scan_normals = match &mesh.normals {
-        Some(n) => n.clone(),
-        None => compute_vertex_normals(mesh, NormalWeighting::Angle),
+        Some(n) => n,
+        None => {
+            computed_normals = compute_vertex_normals(mesh, NormalWeighting::Angle);
+            &computed_normals
+        }
     };
-    let normals: Vec<_> = scan_normals.iter().map(|n| frame.rotation * n).collect();
+    let normals: Vec<_> = scan_normals.par_iter().map(|n| frame.rotation * n).collect();
     let angle = match options.section_angle_rad {
         Some(a) => a,
         None => most_informative_angle(mesh, axis),
@@ -180,84 +186,45 @@ pub(crate) fn build(mesh: &Mesh, axis: &Axis, options: &DrawOptions) -> Result<D
             angle.to_degrees()
         )));
     }
-    let measurements = match &options.measurements {
-        Some(m) => m.clone(),
-        None => {
-            let mut measure_options = MeasureOptions::default();
-            measure_options.bootstrap.samples = 0;
-            measure(mesh, axis, &measure_options)
-        }
-    };
-    let style = options.style;
-    let occlusion = if style.occlusion || style.stipple {
-        let raw = ambient_occlusion(mesh, &options.occlusion)?;
-        Some(stretch(&smooth_over_neighbours(mesh, raw, 4)))
-    } else {
-        None
-    };
-    let regularity = if style.regularity {
-        Some(match options.regularity {
-            RegularityKind::AxisDistance => axis_distance_map(mesh, axis),
-            RegularityKind::IdealVessel => {
-                let values: Vec<f32> = distance_to_ideal_vessel(mesh, axis, &section)?.iter().map(|v| v.abs()).collect();
-                let map = ColorMap::fitted(&values, ColorScale::Rainbow, "distance to ideal vessel", "mm");
-                (values, map)
+    // The measurements (single-threaded, about as long as everything else together) run
+    // beside the shading and the views; they only label the drawing.
+    let (measurements, drawn) = rayon::join(
+        || match &options.measurements {
+            Some(m) => m.clone(),
+            None => {
+                let mut measure_options = MeasureOptions::default();
+                measure_options.bootstrap.samples = 0;
+                measure(mesh, axis, &measure_options)
             }
-        })
-    } else {
-        None
-    };
-    let surface = Surface {
-        mesh,
-        oriented: &oriented,
-        normals: &normals,
-        occlusion: occlusion.as_deref(),
-        regularity: regularity.as_ref().map(|(v, m)| (v.as_slice(), m)),
-    };
-    let shading = Shading {
-        colour: style.colour,
-        light: style.light || style.stipple,
-        occlusion: style.occlusion || style.stipple,
-        regularity: style.regularity,
-        light_direction: options.light_direction,
-    };
-    let raster = style.colour || style.light || style.occlusion || style.regularity;
+        },
+        || draw_views(mesh, axis, &oriented, &normals, &section, options),
+    );
+    let Views { exterior, interior, regularity_map } = drawn?;
     let scale = options.scale_denominator as f64;
     let pixel_mm = scale * 25.4 / options.dpi;
     let mut canvas = Canvas { scale, layers: Vec::new() };
-
-    // Angular placement of the views (section 2.4.1): beside the axis in front view, or
-    // turned so that the fragment sits at its true distance from the axis.
-    let (low, high) = angular_extent(&oriented);
-    let middle = 0.5 * (low + high);
-    let (exterior_turn, interior_turn) = match options.placement {
-        Placement::Beside => (-std::f64::consts::FRAC_PI_2 - middle, std::f64::consts::FRAC_PI_2 - middle),
-        Placement::TrueDistance => (-high, std::f64::consts::PI - high),
-    };
     let profile = OuterProfile::of(&section);
-    let exterior = render_view(&surface, exterior_turn, pixel_mm, &shading);
     let exterior_shift = match options.placement {
-        Placement::Beside => GAP_MM * scale - exterior.top_left()[0],
+        Placement::Beside => GAP_MM * scale - exterior.view.top_left()[0],
         Placement::TrueDistance => 0.0,
     };
-    add_view(&mut canvas, "exterior-view", &exterior, exterior_shift, mesh, options, raster);
-    let exterior_right = exterior.top_left()[0] + exterior_shift + exterior.camera.width as f64 * pixel_mm;
-    if options.interior_view {
-        let interior = render_view(&surface, interior_turn, pixel_mm, &shading);
-        let width = interior.camera.width as f64 * pixel_mm;
+    let exterior_right = exterior.view.top_left()[0] + exterior_shift + exterior.view.camera.width as f64 * pixel_mm;
+    canvas.layer("exterior-view").extend(exterior.elements(exterior_shift));
+    if let Some(interior) = interior {
+        let width = interior.view.camera.width as f64 * pixel_mm;
         let shift = match options.placement {
             Placement::Beside => {
                 // Between the section and the axis when it fits, else left of the section.
                 let left = -profile.inner_radius_min + GAP_MM * scale;
                 if left + width <= -GAP_MM * scale {
-                    left - interior.top_left()[0]
+                    left - interior.view.top_left()[0]
                 } else {
-                    -profile.outer_radius_max - GAP_MM * scale - width - interior.top_left()[0]
+                    -profile.outer_radius_max - GAP_MM * scale - width - interior.view.top_left()[0]
                 }
             }
             Placement::TrueDistance => 0.0,
         };
-        add_view(&mut canvas, "interior-view", &interior, shift, mesh, options, raster);
+        canvas.layer("interior-view").extend(interior.elements(shift));
     }
 
     add_section(&mut canvas, &section, options.section_fill);
@@ -272,7 +239,7 @@ pub(crate) fn build(mesh: &Mesh, axis: &Axis, options: &DrawOptions) -> Result<D
     canvas.layer("axis").push(Element::Path(axis_path));
     add_annotations(&mut canvas, &profile, &measurements, exterior_right, options);
     add_scale_bar(&mut canvas, z_bottom - 9.0 * scale, exterior_right, &profile);
-    if let Some((_, map)) = &regularity {
+    if let Some(map) = &regularity_map {
         add_legend(&mut canvas, map, exterior_right + 8.0 * scale, z_top);
     }
     if let Some(title) = &options.title {
@@ -280,6 +247,117 @@ pub(crate) fn build(mesh: &Mesh, axis: &Axis, options: &DrawOptions) -> Result<D
         canvas.text("annotations", [x, z_top + 21.0 * scale], title.clone(), 4.0, Anchor::Start);
     }
     Ok(canvas.finish(options.dpi))
+}
+
+/// The rendered views and the regularity map their colours follow.
+struct Views {
+    exterior: DrawnView,
+    interior: Option<DrawnView>,
+    regularity_map: Option<ColorMap>,
+}
+
+/// One view with its vector content in object millimetres, before it is shifted along x
+/// to its place.
+struct DrawnView {
+    view: View,
+    /// Raster image, stipple dots, crease lines and outline, unshifted.
+    elements: Vec<Element>,
+}
+
+impl DrawnView {
+    /// The elements moved by `shift` object millimetres along x.
+    fn elements(self, shift: f64) -> Vec<Element> {
+        let mut elements = self.elements;
+        for e in &mut elements {
+            shift_element(e, shift);
+        }
+        elements
+    }
+}
+
+fn shift_element(e: &mut Element, shift: f64) {
+    match e {
+        Element::Path(p) => p.segments.iter_mut().for_each(|s| match s {
+            Segment::MoveTo(q) | Segment::LineTo(q) => q[0] += shift,
+            Segment::Close => {}
+        }),
+        Element::Dots(d) => d.centers.iter_mut().for_each(|c| c[0] += shift),
+        Element::Text(t) => t.position[0] += shift,
+        Element::Image(i) => i.x_mm += shift,
+        Element::Group(g) => g.children.iter_mut().for_each(|c| shift_element(c, shift)),
+    }
+}
+
+/// Shading data (occlusion, regularity) and the crease edges side by side, then the
+/// exterior and interior views with their vector content, each on its own task.
+fn draw_views(
+    mesh: &Mesh,
+    axis: &Axis,
+    oriented: &[crate::mesh::Point],
+    normals: &[crate::mesh::Vector],
+    section: &ProfileSection,
+    options: &DrawOptions,
+) -> Result<Views> {
+    let style = options.style;
+    let ((occlusion, regularity), creases) = rayon::join(
+        || {
+            rayon::join(
+                || -> Result<Option<Vec<f32>>> {
+                    if !(style.occlusion || style.stipple) {
+                        return Ok(None);
+                    }
+                    let raw = ambient_occlusion(mesh, &options.occlusion)?;
+                    Ok(Some(stretch(&smooth_over_neighbours(mesh, raw, 4))))
+                },
+                || -> Result<Option<(Vec<f32>, ColorMap)>> {
+                    if !style.regularity {
+                        return Ok(None);
+                    }
+                    Ok(Some(match options.regularity {
+                        RegularityKind::AxisDistance => axis_distance_map(mesh, axis),
+                        RegularityKind::IdealVessel => {
+                            let values: Vec<f32> =
+                                distance_to_ideal_vessel(mesh, axis, section)?.iter().map(|v| v.abs()).collect();
+                            let map = ColorMap::fitted(&values, ColorScale::Rainbow, "distance to ideal vessel", "mm");
+                            (values, map)
+                        }
+                    }))
+                },
+            )
+        },
+        || if style.linear { crease_edges(mesh, 50.0) } else { Vec::new() },
+    );
+    let (occlusion, regularity) = (occlusion?, regularity?);
+    let surface = Surface {
+        mesh,
+        oriented,
+        normals,
+        occlusion: occlusion.as_deref(),
+        regularity: regularity.as_ref().map(|(v, m)| (v.as_slice(), m)),
+    };
+    let shading = Shading {
+        colour: style.colour,
+        light: style.light || style.stipple,
+        occlusion: style.occlusion || style.stipple,
+        regularity: style.regularity,
+        light_direction: options.light_direction,
+    };
+    let pixel_mm = options.scale_denominator as f64 * 25.4 / options.dpi;
+    // Angular placement of the views (section 2.4.1): beside the axis in front view, or
+    // turned so that the fragment sits at its true distance from the axis.
+    let (low, high) = angular_extent(oriented);
+    let middle = 0.5 * (low + high);
+    let (exterior_turn, interior_turn) = match options.placement {
+        Placement::Beside => (-std::f64::consts::FRAC_PI_2 - middle, std::f64::consts::FRAC_PI_2 - middle),
+        Placement::TrueDistance => (-high, std::f64::consts::PI - high),
+    };
+    let draw = |turn: f64| {
+        let view = render_view(&surface, turn, pixel_mm, &shading);
+        let elements = view_elements(&view, &creases, options);
+        DrawnView { view, elements }
+    };
+    let (exterior, interior) = rayon::join(|| draw(exterior_turn), || options.interior_view.then(|| draw(interior_turn)));
+    Ok(Views { exterior, interior, regularity_map: regularity.map(|(_, map)| map) })
 }
 
 /// Ambient light stretched over the fragment's 2nd..98th percentiles: sherds are mostly
@@ -316,11 +394,14 @@ fn smooth_over_neighbours(mesh: &Mesh, mut values: Vec<f32>, passes: usize) -> V
     values
 }
 
-/// Adds one view: its raster image (raster styles), stipple dots, outline and, for the
-/// linear style, visible crease lines; `shift` moves it along x (object mm).
-fn add_view(canvas: &mut Canvas, id: &str, view: &View, shift: f64, mesh: &Mesh, options: &DrawOptions, raster: bool) {
+/// One view's elements in object millimetres: its raster image (raster styles), stipple
+/// dots, for the linear style the visible ones of `creases`, and its outline.
+fn view_elements(view: &View, creases: &[[u32; 2]], options: &DrawOptions) -> Vec<Element> {
+    let style = options.style;
+    let raster = style.colour || style.light || style.occlusion || style.regularity;
+    let scale = options.scale_denominator as f64;
+    let stroke = |width_mm: f64| Some(Stroke { color: BLACK, width_mm, dash_mm: Vec::new() });
     let [left, top] = view.top_left();
-    let left = left + shift;
     let pixel = view.camera.pixel_mm;
     let (width, height) = (view.camera.width, view.camera.height);
     let to_object = |p: [f64; 2]| [left + p[0] * pixel, top - p[1] * pixel];
@@ -336,8 +417,8 @@ fn add_view(canvas: &mut Canvas, id: &str, view: &View, shift: f64, mesh: &Mesh,
             rgba: view.rgba.clone(),
         }));
     }
-    if options.style.stipple {
-        let spacing_px = options.stipple_spacing_mm * canvas.scale / pixel;
+    if style.stipple {
+        let spacing_px = options.stipple_spacing_mm * scale / pixel;
         let dots = stipple_dots(&view.darkness, width, height, spacing_px, 0x5eed);
         children.push(Element::Dots(Dots {
             centers: dots.iter().map(|d| to_object(*d)).collect(),
@@ -345,24 +426,24 @@ fn add_view(canvas: &mut Canvas, id: &str, view: &View, shift: f64, mesh: &Mesh,
             color: BLACK,
         }));
     }
-    if options.style.linear {
-        let creases = crease_segments(mesh, view, 50.0);
-        if !creases.is_empty() {
-            let mut path = Path { segments: Vec::with_capacity(creases.len() * 2), fill: None, stroke: Some(canvas.stroke(0.12, &[])) };
-            for [a, b] in creases {
+    if style.linear {
+        let visible = visible_creases(creases, view);
+        if !visible.is_empty() {
+            let mut path = Path { segments: Vec::with_capacity(visible.len() * 2), fill: None, stroke: stroke(0.12) };
+            for [a, b] in visible {
                 path.segments.push(Segment::MoveTo(to_object(a)));
                 path.segments.push(Segment::LineTo(to_object(b)));
             }
             children.push(Element::Path(path));
         }
     }
-    let mut outline = Path { segments: Vec::new(), fill: None, stroke: Some(canvas.stroke(0.3, &[])) };
+    let mut outline = Path { segments: Vec::new(), fill: None, stroke: stroke(0.3) };
     for contour in outline_loops(&view.buffer, 0.8) {
         let points: Vec<[f64; 2]> = contour.iter().map(|p| to_object(*p)).collect();
         outline.extend_polyline(&points, true);
     }
     children.push(Element::Path(outline));
-    canvas.layer(id).extend(children);
+    children
 }
 
 /// The section left of the axis (x = -r), filled black or hatched, outlined.

@@ -133,48 +133,65 @@ fn surface_colour(mesh: &Mesh, face: usize, corners: [usize; 3], w: [f32; 3]) ->
 }
 
 /// The outline of the covered pixels as closed polylines in pixel coordinates (pixel
-/// corners), traced along pixel borders and simplified to within `tolerance_px`.
+/// corners), traced along pixel borders and simplified to within `tolerance_px`. Loops
+/// start at their first corner in row order, so the same buffer always gives the same
+/// paths (the SVG, EPS and PDF files are reproducible byte for byte).
 pub(crate) fn outline_loops(buffer: &ZBuffer, tolerance_px: f64) -> Vec<Vec<[f64; 2]>> {
     let (w, h) = (buffer.width as i64, buffer.height as i64);
     let covered = |x: i64, y: i64| x >= 0 && y >= 0 && x < w && y < h && buffer.face[(y * w + x) as usize] != NO_FACE;
-    // Directed border edges with the covered pixel on the left, keyed by start corner.
-    let mut next: std::collections::HashMap<(i64, i64), Vec<(i64, i64)>> = std::collections::HashMap::new();
+    // Corners numbered row by row over the (w + 1) x (h + 1) grid of pixel corners.
+    let corner = |x: i64, y: i64| (y * (w + 1) + x) as u64;
+    let position = |c: u64| [(c % (w as u64 + 1)) as f64, (c / (w as u64 + 1)) as f64];
+    // Directed border edges (start, end) with the covered pixel on their left (y down).
+    let mut edges: Vec<(u64, u64)> = Vec::new();
     for y in 0..h {
         for x in 0..w {
             if !covered(x, y) {
                 continue;
             }
-            // Corners: (x, y) top-left ... walk so the pixel is on the left (y down).
             if !covered(x, y - 1) {
-                next.entry((x + 1, y)).or_default().push((x, y));
+                edges.push((corner(x + 1, y), corner(x, y)));
             }
             if !covered(x, y + 1) {
-                next.entry((x, y + 1)).or_default().push((x + 1, y + 1));
+                edges.push((corner(x, y + 1), corner(x + 1, y + 1)));
             }
             if !covered(x - 1, y) {
-                next.entry((x, y)).or_default().push((x, y + 1));
+                edges.push((corner(x, y), corner(x, y + 1)));
             }
             if !covered(x + 1, y) {
-                next.entry((x + 1, y + 1)).or_default().push((x + 1, y));
+                edges.push((corner(x + 1, y + 1), corner(x + 1, y)));
             }
         }
     }
+    // Sorted by start corner, the edges leaving a corner are one run (two at a pixel
+    // diagonal); `used` marks the walked ones.
+    edges.sort_unstable();
+    let mut used = vec![false; edges.len()];
+    let take_from = |c: u64, used: &mut [bool]| {
+        let first = edges.partition_point(|e| e.0 < c);
+        (first..edges.len()).take_while(|&i| edges[i].0 == c).find(|&i| !used[i]).map(|i| {
+            used[i] = true;
+            edges[i].1
+        })
+    };
     let mut loops = Vec::new();
-    let starts: Vec<(i64, i64)> = next.keys().copied().collect();
-    for start in starts {
-        while let Some(first) = next.get_mut(&start).and_then(|v| v.pop()) {
-            let mut points = vec![[start.0 as f64, start.1 as f64]];
-            let mut current = first;
-            while current != start {
-                points.push([current.0 as f64, current.1 as f64]);
-                match next.get_mut(&current).and_then(|v| v.pop()) {
-                    Some(n) => current = n,
-                    None => break,
-                }
+    for i in 0..edges.len() {
+        if used[i] {
+            continue;
+        }
+        used[i] = true;
+        let start = edges[i].0;
+        let mut points = vec![position(start)];
+        let mut current = edges[i].1;
+        while current != start {
+            points.push(position(current));
+            match take_from(current, &mut used) {
+                Some(n) => current = n,
+                None => break,
             }
-            if points.len() >= 8 {
-                loops.push(simplify_closed(&points, tolerance_px));
-            }
+        }
+        if points.len() >= 8 {
+            loops.push(simplify_closed(&points, tolerance_px));
         }
     }
     loops
@@ -244,9 +261,10 @@ fn segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
     distance2(p, [a[0] + t * dx, a[1] + t * dy]).sqrt()
 }
 
-/// Visible crease edges (dihedral angle above `angle_deg`: rim, fracture edges, sharp
-/// decoration) as pixel-coordinate segments.
-pub(crate) fn crease_segments(mesh: &Mesh, view: &View, angle_deg: f64) -> Vec<[[f64; 2]; 2]> {
+/// The crease edges of `mesh` (dihedral angle above `angle_deg`: rim, fracture edges,
+/// sharp decoration) as vertex pairs. Found once per drawing: both views test the same
+/// edges for visibility with [`visible_creases`].
+pub(crate) fn crease_edges(mesh: &Mesh, angle_deg: f64) -> Vec<[u32; 2]> {
     let cos_limit = angle_deg.to_radians().cos();
     let mut edges: Vec<(u32, u32, u32)> = Vec::with_capacity(mesh.triangles.len() * 3);
     for (f, t) in mesh.triangles.iter().enumerate() {
@@ -257,22 +275,34 @@ pub(crate) fn crease_segments(mesh: &Mesh, view: &View, angle_deg: f64) -> Vec<[
     }
     edges.par_sort_unstable();
     let face_normal = |f: u32| mesh.face_normal_scaled(f as usize).try_normalize(1e-30).unwrap_or_else(Vector::zeros);
-    let buffer = &view.buffer;
-    let pixel = view.camera.pixel_mm as f32;
     edges
         .par_windows(2)
         .filter_map(|pair| {
             let ((a, b, f), (a2, b2, g)) = (pair[0], pair[1]);
-            if (a, b) != (a2, b2) || face_normal(f).dot(&face_normal(g)) > cos_limit {
-                return None;
-            }
+            ((a, b) == (a2, b2) && face_normal(f).dot(&face_normal(g)) <= cos_limit).then_some([a, b])
+        })
+        .collect()
+}
+
+/// The crease edges seen in `view` (their midpoint not behind the z-buffer's surface), as
+/// pixel-coordinate segments.
+pub(crate) fn visible_creases(creases: &[[u32; 2]], view: &View) -> Vec<[[f64; 2]; 2]> {
+    let buffer = &view.buffer;
+    let pixel = view.camera.pixel_mm as f32;
+    creases
+        .par_iter()
+        .filter_map(|&[a, b]| {
             let (p, q) = (view.projected[a as usize], view.projected[b as usize]);
             let mid = [(p[0] + q[0]) / 2.0, (p[1] + q[1]) / 2.0, (p[2] + q[2]) / 2.0];
-            let (x, y) = (mid[0] as i64, mid[1] as i64);
-            if x < 0 || y < 0 || x >= buffer.width as i64 || y >= buffer.height as i64 {
+            // Midpoints in (-1, 0) would truncate to pixel 0: test the sign first.
+            if !(mid[0] >= 0.0 && mid[1] >= 0.0) {
                 return None;
             }
-            let seen = buffer.depth[y as usize * buffer.width + x as usize];
+            let (x, y) = (mid[0] as usize, mid[1] as usize);
+            if x >= buffer.width || y >= buffer.height {
+                return None;
+            }
+            let seen = buffer.depth[y * buffer.width + x];
             (mid[2] <= seen + 2.0 * pixel).then_some([[p[0] as f64, p[1] as f64], [q[0] as f64, q[1] as f64]])
         })
         .collect()
@@ -295,5 +325,30 @@ mod tests {
         let mut corners = loops[0].clone();
         corners.sort_by(|a, b| a.partial_cmp(b).unwrap());
         assert_eq!(corners, vec![[3.0, 2.0], [3.0, 7.0], [8.0, 2.0], [8.0, 7.0]]);
+    }
+
+    #[test]
+    fn outline_is_the_same_on_every_call() {
+        // Two 3x3 blocks meeting diagonally (a corner with two outgoing edges) and a ring.
+        let mut buffer = ZBuffer::new(16, 16);
+        for (x0, y0) in [(2, 2), (5, 5)] {
+            for y in y0..y0 + 3 {
+                for x in x0..x0 + 3 {
+                    buffer.face[y * 16 + x] = 0;
+                }
+            }
+        }
+        for y in 9..15 {
+            for x in 9..15 {
+                if !(11..13).contains(&x) || !(11..13).contains(&y) {
+                    buffer.face[y * 16 + x] = 0;
+                }
+            }
+        }
+        let first = outline_loops(&buffer, 0.1);
+        assert!(first.len() >= 2 && first.iter().all(|l| l.len() >= 4), "{first:?}");
+        for _ in 0..5 {
+            assert_eq!(outline_loops(&buffer, 0.1), first);
+        }
     }
 }

@@ -6,7 +6,7 @@
 
 use rayon::prelude::*;
 
-use crate::mesh::raster::{rasterize_into, OrthographicCamera, ZBuffer};
+use crate::mesh::raster::{floor_to_i64, rasterize_into, OrthographicCamera, ZBuffer};
 use crate::mesh::{Mesh, Vector};
 use crate::{Error, Result};
 
@@ -116,7 +116,7 @@ pub fn ambient_occlusion(mesh: &Mesh, options: &OcclusionOptions) -> Result<Vec<
 
 /// True when one of the four pixel centres around `(x, y)` shows `face`.
 fn owns_nearby_pixel(buffer: &ZBuffer, x: f32, y: f32, face: u32) -> bool {
-    let (x0, y0) = ((x - 0.5).floor() as i64, (y - 0.5).floor() as i64);
+    let (x0, y0) = (floor_to_i64(x - 0.5), floor_to_i64(y - 0.5));
     for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
         let (px, py) = (x0 + dx, y0 + dy);
         if px >= 0 && py >= 0 && px < buffer.width as i64 && py < buffer.height as i64 && buffer.face[py as usize * buffer.width + px as usize] == face {
@@ -130,7 +130,7 @@ fn owns_nearby_pixel(buffer: &ZBuffer, x: f32, y: f32, face: u32) -> bool {
 /// pixel or the border.
 fn bilinear_depth(buffer: &ZBuffer, x: f32, y: f32) -> f32 {
     let (fx, fy) = (x - 0.5, y - 0.5);
-    let (x0, y0) = (fx.floor() as i64, fy.floor() as i64);
+    let (x0, y0) = (floor_to_i64(fx), floor_to_i64(fy));
     let (tx, ty) = (fx - x0 as f32, fy - y0 as f32);
     let mut sum = 0.0;
     for (dx, dy, w) in [(0, 0, (1.0 - tx) * (1.0 - ty)), (1, 0, tx * (1.0 - ty)), (0, 1, (1.0 - tx) * ty), (1, 1, tx * ty)] {

@@ -127,12 +127,12 @@ pub fn rasterize_parallel(width: usize, height: usize, projected: &[[f32; 3]], t
     let mut bins: Vec<Vec<u32>> = vec![Vec::new(); band_count];
     for (f, t) in triangles.iter().enumerate() {
         let ys = t.map(|v| projected[v as usize][1]);
-        let y0 = (ys[0].min(ys[1]).min(ys[2]) - 0.5).ceil().max(0.0) as usize;
-        let y1 = (ys[0].max(ys[1]).max(ys[2]) - 0.5).floor();
-        if y1 < 0.0 || y0 >= height {
+        let y0 = first_pixel(ys[0].min(ys[1]).min(ys[2]));
+        let Some(y1) = last_pixel(ys[0].max(ys[1]).max(ys[2])) else { continue };
+        if y0 >= height {
             continue;
         }
-        let y1 = (y1 as usize).min(height - 1);
+        let y1 = y1.min(height - 1);
         for band in y0 / rows_per_band..=y1 / rows_per_band {
             bins[band].push(f as u32);
         }
@@ -168,15 +168,13 @@ fn rasterize_rows(
         if area == 0.0 || !area.is_finite() {
             continue;
         }
-        let x0 = (a[0].min(b[0]).min(c[0]) - 0.5).ceil().max(0.0) as usize;
-        let x1 = (a[0].max(b[0]).max(c[0]) - 0.5).floor();
-        let y0 = ((a[1].min(b[1]).min(c[1]) - 0.5).ceil().max(0.0) as usize).max(row0);
-        let y1 = (a[1].max(b[1]).max(c[1]) - 0.5).floor();
-        if x1 < 0.0 || y1 < 0.0 {
+        let x0 = first_pixel(a[0].min(b[0]).min(c[0]));
+        let y0 = first_pixel(a[1].min(b[1]).min(c[1])).max(row0);
+        let (Some(x1), Some(y1)) = (last_pixel(a[0].max(b[0]).max(c[0])), last_pixel(a[1].max(b[1]).max(c[1]))) else {
             continue;
-        }
-        let x1 = (x1 as usize).min(width - 1);
-        let y1 = (y1 as usize).min(row_end - 1);
+        };
+        let x1 = x1.min(width - 1);
+        let y1 = y1.min(row_end - 1);
         if x0 > x1 || y0 > y1 {
             continue;
         }
@@ -201,6 +199,29 @@ fn rasterize_rows(
             }
         }
     }
+}
+
+/// `floor(v)` without the libm call `f32::floor` compiles to on baseline x86-64 (no
+/// SSE4.1 rounding instruction): the rasterizer and ambient occlusion round millions of
+/// coordinates per view. Exact for `|v| < 2^23`; larger values are whole already.
+#[inline]
+pub fn floor_to_i64(v: f32) -> i64 {
+    let t = v as i64;
+    if (t as f32) > v { t.saturating_sub(1) } else { t }
+}
+
+/// The first pixel whose centre (`.5`) is at or right of `v` (clamped at 0).
+#[inline]
+fn first_pixel(v: f32) -> usize {
+    // ceil(v - 0.5) = -floor(0.5 - v)
+    floor_to_i64(0.5 - v).saturating_neg().max(0) as usize
+}
+
+/// The last pixel whose centre is at or left of `v`; `None` when that is left of 0.
+#[inline]
+fn last_pixel(v: f32) -> Option<usize> {
+    let last = floor_to_i64(v - 0.5);
+    (last >= 0).then_some(last as usize)
 }
 
 /// Twice the signed area of (a, b, p).
@@ -232,6 +253,16 @@ mod tests {
             vec![Point::new(-half, -half, z), Point::new(half, -half, z), Point::new(half, half, z), Point::new(-half, half, z)],
             vec![[0, 1, 2], [0, 2, 3]],
         )
+    }
+
+    #[test]
+    fn pixel_rounding_matches_floor_and_ceil() {
+        for v in [-3.5f32, -2.0, -0.7, -0.5, 0.0, 0.2, 0.5, 0.50001, 1.0, 1.49, 7.5, 1e6 + 0.5] {
+            assert_eq!(floor_to_i64(v), v.floor() as i64, "floor {v}");
+            assert_eq!(first_pixel(v), (v - 0.5).ceil().max(0.0) as usize, "first {v}");
+            let last = (v - 0.5).floor();
+            assert_eq!(last_pixel(v), (last >= 0.0).then_some(last as usize), "last {v}");
+        }
     }
 
     #[test]

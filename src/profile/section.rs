@@ -262,7 +262,7 @@ pub fn angular_extent(oriented: &[Point]) -> (f64, f64) {
     use std::f64::consts::PI;
     let (low, high) = oriented
         .iter()
-        .filter(|p| p.x.hypot(p.y) > 1e-9)
+        .filter(|p| p.x * p.x + p.y * p.y > 1e-18)
         .map(|p| p.y.atan2(p.x))
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), a| (lo.min(a), hi.max(a)));
     if !(high > low) || high - low > 1.9 * PI { (-PI, PI) } else { (low, high) }
