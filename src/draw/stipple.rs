@@ -6,10 +6,23 @@
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
+/// Most dots one view gets. A publication drawing never needs more (a full A4 page at
+/// 600 dpi stippled at the default spacing is a few tens of thousands), while fuzzed huge or
+/// degenerate meshes asked for millions and made one drawing take 33 s: beyond this the
+/// spacing is widened so that the whole view is still shaded evenly, then the count is
+/// capped outright.
+pub const MAX_STIPPLE_DOTS: usize = 100_000;
+
+/// Dots per square pixel of spacing when dart throwing saturates a tone: random
+/// sequential packing of disks fills 0.547 of the plane, so about 0.547 / (pi / 4) = 0.7
+/// dots per `spacing^2`.
+const SATURATED_DOTS_PER_SPACING_SQUARED: f64 = 0.7;
+
 /// Dot centres in pixel coordinates of a `width x height` tone image (`darkness` in
 /// [0, 1], row-major). `spacing_px` is the distance between dots in fully black areas;
 /// lighter areas get `spacing_px / sqrt(darkness)`, and areas lighter than
-/// `1 - white_cutoff` none. Deterministic for a given `seed`.
+/// `1 - white_cutoff` none. At most [`MAX_STIPPLE_DOTS`] dots: a view that would need more
+/// gets a wider spacing. Deterministic for a given `seed`.
 pub fn stipple_dots(darkness: &[f32], width: usize, height: usize, spacing_px: f64, seed: u64) -> Vec<[f64; 2]> {
     const WHITE_CUTOFF: f32 = 0.06;
     if width == 0 || height == 0 || spacing_px <= 0.0 || darkness.len() != width * height {
@@ -19,6 +32,9 @@ pub fn stipple_dots(darkness: &[f32], width: usize, height: usize, spacing_px: f
     // time: at very low resolutions (a few dpi) the candidates and the grid grow as the
     // inverse square of the spacing, which made a 10 dpi drawing take 16 s (fuzzing).
     let spacing_px = spacing_px.max(1.0);
+    let dark_area: f64 = darkness.iter().map(|&d| d as f64).sum();
+    let expected_dots = SATURATED_DOTS_PER_SPACING_SQUARED * dark_area / (spacing_px * spacing_px);
+    let spacing_px = spacing_px * (expected_dots / MAX_STIPPLE_DOTS as f64).sqrt().max(1.0);
     let tone_at = |x: f64, y: f64| {
         let (column, row) = ((x as usize).min(width - 1), (y as usize).min(height - 1));
         darkness[row * width + column]
@@ -29,7 +45,6 @@ pub fn stipple_dots(darkness: &[f32], width: usize, height: usize, spacing_px: f
     let (columns, rows) = ((width as f64 / cell).ceil() as usize + 1, (height as f64 / cell).ceil() as usize + 1);
     let mut grid: Vec<Vec<[f64; 2]>> = vec![Vec::new(); columns * rows];
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let dark_area: f64 = darkness.iter().map(|&d| d as f64).sum();
     // Enough candidates to saturate the darkest areas several times over.
     let candidates = ((dark_area / (spacing_px * spacing_px)) * 12.0).ceil() as usize + 16;
     let reach = (max_spacing / cell).ceil() as i64;
@@ -58,6 +73,9 @@ pub fn stipple_dots(darkness: &[f32], width: usize, height: usize, spacing_px: f
         if free {
             grid[cy as usize * columns + cx as usize].push([x, y]);
             dots.push([x, y]);
+            if dots.len() == MAX_STIPPLE_DOTS {
+                break;
+            }
         }
     }
     dots
@@ -70,7 +88,9 @@ mod tests {
     #[test]
     fn darker_half_gets_more_dots_and_none_are_too_close() {
         let (width, height) = (200, 100);
-        let darkness: Vec<f32> = (0..width * height).map(|i| if i % width < 100 { 0.9 } else { 0.25 }).collect();
+        let darkness: Vec<f32> = (0..width * height)
+            .map(|i| if i % width < 100 { 0.9 } else { 0.25 })
+            .collect();
         let dots = stipple_dots(&darkness, width, height, 3.0, 7);
         let left = dots.iter().filter(|d| d[0] < 100.0).count();
         let right = dots.len() - left;
@@ -92,5 +112,26 @@ mod tests {
         xs.dedup();
         assert_eq!(xs.len(), dots.len());
         assert!(stipple_dots(&vec![0.0; 100], 10, 10, 2.0, 1).is_empty());
+    }
+
+    #[test]
+    fn a_huge_dark_view_is_capped_but_shaded_all_over() {
+        // 4000 x 4000 pixels all black at one-pixel spacing would be about 11 million dots.
+        let (width, height) = (4000, 4000);
+        let dots = stipple_dots(&vec![1.0; width * height], width, height, 1.0, 3);
+        assert!(dots.len() <= MAX_STIPPLE_DOTS);
+        assert!(dots.len() > MAX_STIPPLE_DOTS / 2, "{} dots", dots.len());
+        // The widened spacing still covers the whole view: every quarter has its share.
+        for (x0, y0) in [(0.0, 0.0), (2000.0, 0.0), (0.0, 2000.0), (2000.0, 2000.0)] {
+            let quarter = dots
+                .iter()
+                .filter(|d| d[0] >= x0 && d[0] < x0 + 2000.0 && d[1] >= y0 && d[1] < y0 + 2000.0)
+                .count();
+            assert!(
+                quarter > dots.len() / 5,
+                "{quarter} of {} dots in the quarter at {x0}, {y0}",
+                dots.len()
+            );
+        }
     }
 }
