@@ -47,6 +47,8 @@ pub struct FragmentOutcome {
     pub position_uncertainty_mm: f64,
     /// Competitor (angle, cost ratio).
     pub competitor: Option<(f64, f64)>,
+    /// Largest turn of the axis with one region of the sherd left out, degrees.
+    pub region_turn_deg: f64,
     /// Fraction of inliers.
     pub inlier_fraction: f64,
     /// Strength of the sense cue.
@@ -96,6 +98,7 @@ pub fn evaluate(id: String, sherd: &SynthSherd, options: &OrientOptions) -> Frag
         sphere_residual_angle_deg: 0.0,
         position_uncertainty_mm: f64::INFINITY,
         competitor: None,
+        region_turn_deg: f64::INFINITY,
         inlier_fraction: 0.0,
         direction_strength: 0.0,
         direction_cue: String::new(),
@@ -131,6 +134,7 @@ fn fill(outcome: &mut FragmentOutcome, sherd: &SynthSherd, orientation: &Orienta
     outcome.sphere_residual_angle_deg = report.sphere_residual_angle_deg;
     outcome.position_uncertainty_mm = orientation.position_uncertainty_mm;
     outcome.competitor = report.competitor;
+    outcome.region_turn_deg = report.region_turn_deg;
     outcome.inlier_fraction = report.inlier_fraction;
     outcome.direction_strength = report.direction_strength;
     outcome.direction_cue = report.direction_cue.clone();

@@ -6,7 +6,7 @@
 //! area-weighted normals) -> normal lines -> opposite-normal filter
 //! ([`opposite_normals`]) -> hypotheses from the line complex and the sampler
 //! ([`line_complex`]) -> multi-start Nelder-Mead and MM refinement ([`halir`],
-//! [`mm_regression`]) -> sense base to rim ([`direction`]) -> verdict ([`verdict`]).
+//! [`mm_regression`]) -> leave-one-region-out stability ([`region_stability`]) -> sense base to rim ([`direction`]) -> verdict ([`verdict`]).
 
 pub mod accuracy;
 pub mod axis;
@@ -16,6 +16,7 @@ pub mod line_complex;
 pub mod mm_regression;
 pub mod normal_lines;
 pub mod opposite_normals;
+pub mod region_stability;
 pub mod surfaces;
 pub mod three_points;
 pub mod verdict;
@@ -136,6 +137,9 @@ pub struct OrientReport {
     pub concurrency_ratio: f64,
     /// Uncalibrated direction standard error from the fit's Hessian, degrees.
     pub raw_angle_sigma_deg: f64,
+    /// Largest turn of the axis, degrees, when one region of the sherd is left out of the
+    /// fit (see [`region_stability`]).
+    pub region_turn_deg: f64,
     /// Angle to the best competing axis, degrees, and its cost relative to the best.
     pub competitor: Option<(f64, f64)>,
     /// The cue that set the sense base to rim, or why none could.
@@ -227,6 +231,8 @@ pub fn orient_automatic_with_decimated(mesh: &Mesh, decimated: Option<&Mesh>, op
     report.residual_scale_mm = fit.scale * scale_mm;
     report.raw_angle_sigma_deg = fit.angle_sigma_rad.to_degrees();
     report.competitor = verdict::best_competitor(&fit);
+    report.region_turn_deg = region_stability::leave_one_region_out(&centered, &fit, &options.halir).largest_turn_deg;
+    lap("region stability", &mut clock);
     let evidence = direction::direction_evidence(&lines, &inliers, &all_lines.points, &axis);
     if evidence.score < 0.0 {
         axis = axis.flipped();

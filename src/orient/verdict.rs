@@ -59,6 +59,9 @@ pub struct VerdictThresholds {
     /// A competing axis more than 10 degrees away whose cost is within this ratio of the
     /// best makes the answer ambiguous.
     pub competitor_cost_ratio: f64,
+    /// Largest turn of the axis when one region of the sherd is left out, degrees (see
+    /// [`super::region_stability::MAX_REGION_TURN_DEG`]).
+    pub max_region_turn_deg: f64,
     /// Smallest confidence in the sense base to rim (see
     /// [`super::direction::DirectionEvidence`]): below it the axis line may be right but
     /// the piece would be drawn upside down as often as not.
@@ -87,6 +90,7 @@ impl Default for VerdictThresholds {
             max_residual_angle_deg: 5.0,
             min_inlier_fraction: 0.3,
             competitor_cost_ratio: 1.1,
+            max_region_turn_deg: super::region_stability::MAX_REGION_TURN_DEG,
             min_sense_confidence: 0.55,
             angle_sigma_factor: 5.0,
         }
@@ -174,6 +178,12 @@ pub fn judge(
                 "two axes {angle:.0} deg apart fit almost equally well (cost ratio {ratio:.2})"
             ));
         }
+    }
+    if !(report.region_turn_deg <= limits.max_region_turn_deg) {
+        return flag(format!(
+            "the axis rests on one region of the sherd: leaving it out turns the axis by {:.1} deg (at most {:.1} deg accepted)",
+            report.region_turn_deg, limits.max_region_turn_deg
+        ));
     }
     if !(report.direction_strength >= limits.min_sense_confidence) {
         return flag(format!(
