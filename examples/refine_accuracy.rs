@@ -9,6 +9,11 @@
 //!
 //! Run: `cargo run --release --example refine_accuracy [VESSELS] [criteria,...]`
 //! (criteria: circles, pareto, profile, tangent, auto, pipeline; default all).
+//! Environment: `REFINE_ACCURACY_DETAIL=1` adds a row per sherd part,
+//! `REFINE_ACCURACY_DEFORMATION=S` scales the vessels' deformation (default 1, 0 for
+//! perfect solids of revolution: what is left is the criteria's own error),
+//! `REFINE_ACCURACY_START_TILT_DEG=D` the start's tilt (default 3 degrees),
+//! `REFINE_ACCURACY_DUMP=1` prints a line per fragment on stderr.
 
 use std::time::Instant;
 
@@ -24,7 +29,7 @@ use sherd::synth::{generate_vessel, SherdPart, SynthSherd, VesselOptions};
 
 /// Fragments per vessel (the paper's synthetic vessel broke into 34).
 const FRAGMENTS_PER_VESSEL: usize = 34;
-/// Error of the simulated pre-orientation.
+/// Error of the simulated pre-orientation (`REFINE_ACCURACY_START_TILT_DEG` overrides the tilt).
 const START_TILT_DEG: f64 = 3.0;
 const START_SHIFT_MM: f64 = 2.0;
 
@@ -43,6 +48,11 @@ struct Outcome {
     millis: f64,
 }
 
+/// A number from the environment variable `name`, or `default`.
+fn env_number(name: &str, default: f64) -> f64 {
+    std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default)
+}
+
 /// The true axis turned by `START_TILT_DEG` about a random horizontal direction and
 /// shifted by `START_SHIFT_MM` in a random horizontal direction.
 fn perturbed(truth: &Axis, seed: u64) -> Axis {
@@ -50,7 +60,7 @@ fn perturbed(truth: &Axis, seed: u64) -> Axis {
     let frame_back = truth.rotation_from_z();
     let azimuth: f64 = rng.random_range(0.0..std::f64::consts::TAU);
     let turn_axis = Unit::new_normalize(frame_back * Vector::new(azimuth.cos(), azimuth.sin(), 0.0));
-    let direction = UnitQuaternion::from_axis_angle(&turn_axis, START_TILT_DEG.to_radians()) * truth.direction.into_inner();
+    let direction = UnitQuaternion::from_axis_angle(&turn_axis, env_number("REFINE_ACCURACY_START_TILT_DEG", START_TILT_DEG).to_radians()) * truth.direction.into_inner();
     let shift_azimuth: f64 = rng.random_range(0.0..std::f64::consts::TAU);
     let shift = frame_back * Vector::new(shift_azimuth.cos(), shift_azimuth.sin(), 0.0) * START_SHIFT_MM;
     Axis::new(truth.point + shift, direction)
@@ -162,7 +172,12 @@ fn main() {
         .flat_map(|seed| {
             let vessel = generate_vessel(
                 seed,
-                &VesselOptions { fragment_count: FRAGMENTS_PER_VESSEL, random_motion: true, ..Default::default() },
+                &VesselOptions {
+                    fragment_count: FRAGMENTS_PER_VESSEL,
+                    random_motion: true,
+                    deformation_scale: env_number("REFINE_ACCURACY_DEFORMATION", 1.0),
+                    ..Default::default()
+                },
             );
             vessel.fragments.into_iter().enumerate().map(move |(i, f)| (seed * 1000 + i as u64, f))
         })

@@ -4,10 +4,15 @@ use sherd::mesh::{Mesh, Point};
 use sherd::orient::Axis;
 use sherd::profile::measure::{measure, MeasureOptions};
 use sherd::refine::uncertainty::BootstrapOptions;
-use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
+use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart, SynthSherd};
 
 fn options(part: SherdPart) -> SherdOptions {
     SherdOptions { target_faces: 8000, ..SherdOptions::for_part(part).ideal() }
+}
+
+/// Measurement settings without the bootstrap (no intervals): fast.
+fn without_intervals() -> MeasureOptions {
+    MeasureOptions { bootstrap: BootstrapOptions { samples: 0, ..Default::default() }, ..Default::default() }
 }
 
 /// Volume inside the revolved inner profile (base centre to rim), litres, by frustums.
@@ -38,7 +43,10 @@ fn rim_sherd_measured_at_its_true_axis() {
         assert!((rim - rim_truth).abs() < 0.01 * rim_truth, "seed {seed}: rim radius {rim} vs {rim_truth}");
         assert_eq!(m.rim_diameter_mm, Some(2.0 * rim));
         let [low, high] = m.rim_diameter_interval_mm.expect("an interval");
-        assert!(low < 2.0 * rim && 2.0 * rim < high && high - low < 0.1 * rim, "seed {seed}: interval [{low}, {high}] for {rim}, axis interval {:?}", m.axis_angle_interval_deg);
+        // The interval's half-width is at least 3% of the diameter (the floor for what no
+        // resample shows: the corpus's deformation and noise); the bound of 2.5% this
+        // once had was tighter than the floor. At most 5% now: the floor and a little.
+        assert!(low < 2.0 * rim && 2.0 * rim < high && high - low < 0.2 * rim, "seed {seed}: interval [{low}, {high}] for {rim}, axis interval {:?}", m.axis_angle_interval_deg);
         assert!((m.sector_angle_deg - truth.sector_angle_deg).abs() < 1.0, "sector {} vs {}", m.sector_angle_deg, truth.sector_angle_deg);
         assert!((m.sector_percent - m.sector_angle_deg / 3.6).abs() < 1e-9);
         assert!((m.height_mm - truth.height_mm).abs() < 0.5, "height {} vs {}", m.height_mm, truth.height_mm);
@@ -60,7 +68,7 @@ fn complete_profile_gives_capacity() {
         if sherd.truth.part != SherdPart::RimToBase {
             continue;
         }
-        let m = measure(&sherd.mesh, &sherd.truth.axis, &MeasureOptions { bootstrap: BootstrapOptions { samples: 0, ..Default::default() }, ..Default::default() });
+        let m = measure(&sherd.mesh, &sherd.truth.axis, &without_intervals());
         // A round-bottomed vessel has no level base to recognise: no capacity then.
         let Some(capacity) = m.capacity_litres else {
             println!("seed {seed}: no capacity: {:?}", m.notes);
@@ -88,6 +96,37 @@ fn body_sherd_has_no_rim_base_or_capacity() {
     assert!(json.contains("\"sector_angle_deg\""));
 }
 
+/// A piece of the flat floor stands level like a base, but its outer break is no base
+/// edge: the widest point there once passed for the base radius, 15-40% short of it.
+#[test]
+fn floor_pieces_give_no_base_diameter() {
+    let floor_options = SherdOptions { target_faces: 8000, ..SherdOptions::for_part(SherdPart::Flat) };
+    let floors: Vec<(u64, SynthSherd)> =
+        (0..6).map(|seed| (seed, synthetic_sherd(seed, &floor_options))).filter(|(_, s)| s.truth.part == SherdPart::Flat).collect();
+    assert!(floors.len() >= 3, "only {} floor pieces generated", floors.len());
+    for (seed, sherd) in &floors {
+        let m = measure(&sherd.mesh, &sherd.truth.axis, &without_intervals());
+        assert!(m.base_radius_mm.is_none() && m.base_diameter_interval_mm.is_none(), "seed {seed}: {m:?}");
+        assert!(m.notes.iter().any(|n| n.contains("no base diameter")), "seed {seed}: {:?}", m.notes);
+    }
+}
+
+/// Base sherds (floor and some wall) keep their base diameter.
+#[test]
+fn base_sherds_give_a_base_diameter() {
+    let mut measured = 0;
+    for seed in 0..8 {
+        let sherd = synthetic_sherd(seed, &options(SherdPart::Base));
+        let Some(truth) = sherd.truth.base_radius_mm else { continue };
+        let m = measure(&sherd.mesh, &sherd.truth.axis, &without_intervals());
+        if let Some(base) = m.base_radius_mm {
+            measured += 1;
+            assert!((base - truth).abs() < 0.05 * truth, "seed {seed}: base radius {base} vs {truth}");
+        }
+    }
+    assert!(measured >= 4, "only {measured} base sherds gave a base radius");
+}
+
 #[test]
 fn degenerate_mesh_is_reported_not_measured() {
     let mesh = Mesh::new(vec![Point::origin(); 4], vec![]);
@@ -102,7 +141,7 @@ fn degenerate_mesh_is_reported_not_measured() {
 fn rims_of_finely_meshed_sherds_are_found() {
     for seed in [2, 6, 12, 16] {
         let sherd = synthetic_sherd(seed, &SherdOptions { target_faces: 200_000, ..SherdOptions::for_part(SherdPart::Rim) });
-        let m = measure(&sherd.mesh, &sherd.truth.axis, &MeasureOptions { bootstrap: BootstrapOptions { samples: 0, ..Default::default() }, ..Default::default() });
+        let m = measure(&sherd.mesh, &sherd.truth.axis, &without_intervals());
         let truth = sherd.truth.rim_radius_mm.expect("a rim sherd has a rim radius");
         let rim = m.rim_radius_mm.unwrap_or_else(|| panic!("seed {seed}: rim not found: {:?}", m.notes));
         assert!((rim - truth).abs() < 0.02 * truth, "seed {seed}: rim radius {rim} vs {truth}");

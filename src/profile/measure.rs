@@ -134,6 +134,20 @@ fn edge_radius(oriented: &[Point], outer_skin: &[bool], edge: Edge) -> Option<f6
     (!radii.is_empty()).then(|| quantile(&mut radii, 0.5))
 }
 
+/// Whether the fragment (`oriented`: the vertices under the axis) rises into the wall
+/// above the base: higher than [`EDGE_BAND_MM`] above the floor's inner face (the
+/// highest point at the innermost radius, as in [`capacity_litres`]). A piece of the
+/// floor alone stands as level as a base, but its outer break is no base edge: the
+/// widest point of its band would pass for the base radius (on the synthetic corpus
+/// 15-40% short of it), so it gives no base diameter. Any vertex counts, not only the
+/// outer skin's: the low flaring wall of a bowl has no skin the skin test recognises.
+fn reaches_base_edge(oriented: &[Point]) -> bool {
+    let radius = |p: &Point| p.x.hypot(p.y);
+    let innermost = oriented.iter().map(radius).fold(f64::INFINITY, f64::min);
+    let floor_top = oriented.iter().filter(|p| radius(p) <= innermost + EDGE_BAND_MM).map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
+    oriented.iter().any(|p| p.z > floor_top + EDGE_BAND_MM)
+}
+
 /// The crossings of the horizontal line at `z` with closed outlines, sorted by radius.
 fn crossings(outlines: &[Vec<[f64; 2]>], z: f64) -> Vec<f64> {
     let mut found = Vec::new();
@@ -233,12 +247,15 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
             }
         };
     let has_rim = edges.contains(&Edge::Rim);
-    let has_base = edges.contains(&Edge::Base);
+    let level_base = edges.contains(&Edge::Base);
+    let has_base = level_base && reaches_base_edge(&oriented);
     if !has_rim {
         measurements.notes.push("no level rim preserved: no rim diameter".into());
     }
-    if !has_base {
+    if !level_base {
         measurements.notes.push("no level base preserved: no base diameter".into());
+    } else if !has_base {
+        measurements.notes.push("a piece of the floor that does not reach the base edge: no base diameter".into());
     }
     measurements.rim_radius_mm = has_rim.then(|| edge_radius(&oriented, &outer_skin, Edge::Rim)).flatten();
     measurements.base_radius_mm = has_base.then(|| edge_radius(&oriented, &outer_skin, Edge::Base)).flatten();
@@ -271,8 +288,11 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
             let interval = |estimate: Option<f64>, edge: Edge| {
                 let estimate = estimate?;
                 let values: Vec<f64> = replicate_points.iter().filter_map(|p| edge_radius(p, &outer_skin, edge)).collect();
-                value_interval(estimate, &values, estimate * options.bootstrap.diameter_floor_fraction, &options.bootstrap)
-                    .map(|[a, b]| [2.0 * a, 2.0 * b])
+                let floor_fraction = match edge {
+                    Edge::Rim => options.bootstrap.rim_diameter_floor_fraction,
+                    Edge::Base => options.bootstrap.base_diameter_floor_fraction,
+                };
+                value_interval(estimate, &values, estimate * floor_fraction, &options.bootstrap).map(|[a, b]| [2.0 * a, 2.0 * b])
             };
             measurements.rim_diameter_interval_mm = interval(measurements.rim_radius_mm, Edge::Rim);
             measurements.base_diameter_interval_mm = interval(measurements.base_radius_mm, Edge::Base);
