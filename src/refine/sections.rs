@@ -294,15 +294,27 @@ fn skins_by_smooth_regions(mesh: &Mesh, points: &[Point]) -> Vec<Option<Skin>> {
     skins.into_iter().map(Option::flatten).collect()
 }
 
-/// The `fraction` quantile of `values` (sorted in place).
+/// The `fraction` quantile of `values`, interpolated linearly between the two nearest
+/// ranks (reorders `values` in place).
+///
+/// By selection, not by sorting: the criteria take a median per section at every
+/// evaluation, and only the one or two ranks around the quantile are needed. The
+/// value is the same, bit for bit, as from a full sort: `total_cmp` is a total order
+/// whose equal elements are identical.
 pub fn quantile(values: &mut [f64], fraction: f64) -> f64 {
     if values.is_empty() {
         return f64::NAN;
     }
-    values.sort_by(f64::total_cmp);
     let position = fraction.clamp(0.0, 1.0) * (values.len() - 1) as f64;
     let (low, high) = (position.floor() as usize, position.ceil() as usize);
-    values[low] + (values[high] - values[low]) * (position - low as f64)
+    let (_, &mut low_value, above) = values.select_nth_unstable_by(low, f64::total_cmp);
+    let high_value = if high == low {
+        low_value
+    } else {
+        // The next rank is the least of the elements selected above `low`.
+        above.iter().copied().min_by(f64::total_cmp).expect("high < len, so some element lies above low")
+    };
+    low_value + (high_value - low_value) * (position - low as f64)
 }
 
 impl PreparedSurface {
@@ -426,15 +438,26 @@ impl PreparedSurface {
             .collect();
         let count = self.section_heights_mm.len();
         let slot = |skin: Skin| if skins.len() == 2 && skin == Skin::Outer { count } else { 0 };
+        let heights = &self.section_heights_mm;
         if self.has_faces() {
             // Every evaluation of a criterion moves all skin vertices and cuts all skin
             // triangles: on a large scan this is the whole cost of refinement, so it runs
             // on all cores, over contiguous runs of triangles whose cuts are appended in
             // their order (the sections are the same, point for point, as in one pass).
-            let moved: Vec<Option<Point>> =
-                self.points.par_iter().zip(self.skins.par_iter()).map(|(p, s)| s.map(|_| frame.apply(p))).collect();
-            let first = self.section_heights_mm[0];
-            let spacing = if count > 1 { self.section_heights_mm[1] - first } else { 1.0 };
+            // Each moved vertex carries the number of planes at or below it, so that the
+            // planes a triangle crosses are the range between its corners' counts, and
+            // the many triangles between two planes are passed over on three integers.
+            let moved: Vec<Option<(Point, usize)>> = self
+                .points
+                .par_iter()
+                .zip(self.skins.par_iter())
+                .map(|(p, s)| {
+                    s.map(|_| {
+                        let q = frame.apply(p);
+                        (q, planes_at_or_below(heights, q.z))
+                    })
+                })
+                .collect();
             let cuts: Vec<Vec<(usize, [f64; 2], f64)>> = self
                 .skin_triangles
                 .par_chunks(TRIANGLES_PER_TASK)
@@ -442,19 +465,19 @@ impl PreparedSurface {
                     let mut cuts = Vec::new();
                     for (triangle, skin) in run {
                         let corners = triangle.map(|v| moved[v as usize].expect("skin triangles have skin vertices"));
-                        let low = corners.iter().map(|c| c.z).fold(f64::INFINITY, f64::min);
-                        let high = corners.iter().map(|c| c.z).fold(f64::NEG_INFINITY, f64::max);
-                        let first_index = (((low - first) / spacing).ceil().max(0.0)) as usize;
-                        let mut index = first_index;
-                        while index < count && self.section_heights_mm[index] <= high {
-                            let h = self.section_heights_mm[index];
+                        let ranks = corners.map(|(_, rank)| rank);
+                        let (first_crossed, past_crossed) =
+                            (ranks.iter().min().copied().unwrap_or(0), ranks.iter().max().copied().unwrap_or(0));
+                        // Plane `index` is crossed when one corner lies below it (count <=
+                        // index) and one at or above it (count > index).
+                        let corners = corners.map(|(p, _)| p);
+                        for (index, &h) in heights.iter().enumerate().take(past_crossed).skip(first_crossed) {
                             if let Some((a, b)) = cut_triangle(&corners, h) {
                                 let length = (a[0] - b[0]).hypot(a[1] - b[1]);
                                 if length > 0.0 {
                                     cuts.push((slot(*skin) + index, [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0], length));
                                 }
                             }
-                            index += 1;
                         }
                     }
                     cuts
@@ -466,9 +489,14 @@ impl PreparedSurface {
                 section.weights.push(length);
             }
         } else {
+            let half = self.slab_half_thickness_mm;
             for (p, skin) in self.skin_points_in(frame) {
-                for (index, h) in self.section_heights_mm.iter().enumerate() {
-                    if (p.z - h).abs() <= self.slab_half_thickness_mm {
+                // Only the planes about `p.z` can hold it (the slabs are thinner than the
+                // spacing); one plane of margin on each side, the exact test decides.
+                let nearest = heights.partition_point(|&h| h < p.z - half).saturating_sub(1);
+                let past = (heights.partition_point(|&h| h <= p.z + half) + 1).min(count);
+                for (index, h) in heights.iter().enumerate().take(past).skip(nearest) {
+                    if (p.z - h).abs() <= half {
                         let section = &mut sections[slot(skin) + index];
                         section.points.push([p.x, p.y]);
                         section.weights.push(1.0);
@@ -478,6 +506,12 @@ impl PreparedSurface {
         }
         sections
     }
+}
+
+/// The number of section planes at or below `z` (`heights` ascending): a triangle's
+/// corners with counts `i < j` lie on either side of planes `i..j` and of no other.
+fn planes_at_or_below(heights: &[f64], z: f64) -> usize {
+    heights.partition_point(|&h| h <= z)
 }
 
 /// The segment where the plane z = `height` cuts a triangle, if it does.
@@ -563,6 +597,31 @@ mod tests {
             assert!((a - b).abs() < 1e-9, "{parameters:?} vs {back:?}");
         }
         assert!(prepared.axis_of(&[0.0; 4]).line_angle_to_deg(&start) < 1e-9);
+    }
+
+    #[test]
+    fn quantile_by_selection_equals_the_sorted_quantile_bit_for_bit() {
+        // Ties, negative zeros, both parities of length, every interpolation position.
+        let mut state = 12345u64;
+        for length in 1..40 {
+            let values: Vec<f64> = (0..length)
+                .map(|_| {
+                    state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                    let v = (((state >> 33) % 17) as f64 - 8.0) * 0.37;
+                    if v == 0.0 && state & 1 == 1 { -0.0 } else { v }
+                })
+                .collect();
+            for fraction in [0.0, 0.05, 0.25, 0.5, 0.77, 0.95, 1.0] {
+                let mut sorted = values.clone();
+                sorted.sort_by(f64::total_cmp);
+                let position = fraction * (length - 1) as f64;
+                let (low, high) = (position.floor() as usize, position.ceil() as usize);
+                let expected = sorted[low] + (sorted[high] - sorted[low]) * (position - low as f64);
+                let found = quantile(&mut values.clone(), fraction);
+                assert_eq!(found.to_bits(), expected.to_bits(), "{values:?} at {fraction}");
+            }
+        }
+        assert!(quantile(&mut [], 0.5).is_nan());
     }
 
     #[test]
