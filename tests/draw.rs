@@ -5,6 +5,8 @@
 
 use std::process::Command;
 
+mod support;
+
 use sherd::draw::{DrawOptions, Drawing, Element, Format, Segment, Style};
 use sherd::mesh::Mesh;
 use sherd::orient::Axis;
@@ -312,4 +314,167 @@ fn views_too_large_to_render_are_refused_before_allocating() {
         assert!(message.contains("million") && message.contains("lower the resolution"), "{message}");
     }
     assert!(Drawing::build(&tetrahedron(50.0), &axis, &DrawOptions::default()).is_ok());
+}
+
+/// The ideal-vessel regularity drawing shows the signed distances on the diverging scale
+/// of `sherd export --regularity` and the C ABI: the legend reads the export's range.
+#[test]
+fn regularity_legend_is_the_export_scale() {
+    use sherd::profile::regularity::{ideal_vessel_map, ColorScale};
+    use sherd::profile::section::{most_informative_angle, profile_section};
+    let sherd = rim_sherd();
+    let (mesh, axis) = (&sherd.mesh, &sherd.truth.axis);
+    let drawing = build(&sherd, "regularity", 1, 100.0);
+    let (_, export) = ideal_vessel_map(mesh, axis, &profile_section(mesh, axis, most_informative_angle(mesh, axis))).unwrap();
+    assert_eq!(export.scale, ColorScale::Diverging);
+    assert!(export.low < 0.0 && export.high > 0.0 && (export.low + export.high).abs() < 1e-12);
+    let texts: Vec<String> = drawing
+        .layer("legend")
+        .expect("a legend")
+        .children
+        .iter()
+        .filter_map(|e| match e {
+            Element::Text(t) => Some(t.content.clone()),
+            _ => None,
+        })
+        .collect();
+    let values: Vec<f64> = texts.iter().filter_map(|t| t.strip_suffix(" mm")?.parse().ok()).collect();
+    assert_eq!(values.len(), 3, "{texts:?}");
+    assert!((values[0] - export.low).abs() <= 0.005 && (values[2] - export.high).abs() <= 0.005, "legend {texts:?} vs export {} .. {}", export.low, export.high);
+    assert!(texts.iter().any(|t| t.starts_with('+')) && texts.contains(&"0 mm".to_string()), "signed labels: {texts:?}");
+    assert!(texts.contains(&export.title), "{texts:?}");
+}
+
+/// Every style alone and all together, in every format, each file read back by a real
+/// reader: usvg, the PNG decoder, ghostscript for PDF and EPS (skipped with a message
+/// when gs is absent, unless SHERD_REQUIRE_TOOLS=1).
+fn every_style_in_every_format(name: &str, mesh: &Mesh, axis: &Axis, measurements: Option<sherd::profile::measure::Measurements>) {
+    let mut styles: Vec<&str> = Style::NAMES.to_vec();
+    let all = Style::NAMES.join(",");
+    styles.push(&all);
+    for style in styles {
+        let options = DrawOptions { style: Style::parse(style).unwrap(), dpi: 100.0, measurements: measurements.clone(), ..Default::default() };
+        let drawing = Drawing::build(mesh, axis, &options).unwrap_or_else(|e| panic!("{name} {style}: {e}"));
+        let svg = drawing.to_bytes(Format::Svg).unwrap();
+        let tree = usvg::Tree::from_data(&svg, &usvg::Options::default()).unwrap_or_else(|e| panic!("{name} {style}: usvg: {e}"));
+        assert!((tree.size().width() as f64 - drawing.width_mm * 96.0 / 25.4).abs() < 2.0, "{name} {style}: SVG width");
+        let (w, h, rgba, _) = decode_png(&drawing.to_bytes(Format::Png).unwrap());
+        assert!(w > 50 && h > 50, "{name} {style}: PNG {w}x{h}");
+        let dark = rgba.chunks_exact(4).filter(|p| p[3] > 200 && p[0] < 60 && p[1] < 60 && p[2] < 60).count();
+        assert!(dark > 200, "{name} {style}: PNG has {dark} dark pixels");
+        for format in [Format::Pdf, Format::Eps] {
+            let (extension, extra) = if format == Format::Pdf { ("pdf", &[][..]) } else { ("eps", &["-dEPSCrop"][..]) };
+            match render_with_ghostscript(&drawing.to_bytes(format).unwrap(), extension, extra) {
+                Some((_, _, rgba)) => {
+                    let dark = rgba.chunks_exact(4).filter(|p| p[3] > 200 && p[0] < 60 && p[1] < 60 && p[2] < 60).count();
+                    assert!(dark > 100, "{name} {style}: ghostscript drew {dark} dark pixels of the {extension}");
+                }
+                None => println!("SKIP: ghostscript not installed, {name} {style} {extension} not rendered"),
+            }
+        }
+    }
+}
+
+#[test]
+fn every_style_and_format_of_a_synthetic_sherd_reads_back() {
+    let sherd = rim_sherd();
+    every_style_in_every_format("synthetic rim sherd", &sherd.mesh, &sherd.truth.axis, None);
+}
+
+#[test]
+fn every_style_and_format_of_the_real_scan_a011_reads_back() {
+    let Some(path) = support::shared_data_file("every_style_and_format_of_the_real_scan_a011_reads_back", "dacord/A011.ply") else {
+        println!("SKIP: ../shared/data/dacord/A011.ply is absent");
+        return;
+    };
+    let analysis = sherd::pipeline::analyse_file(&path, &sherd::pipeline::PipelineOptions::default()).unwrap();
+    let axis = *analysis.axis();
+    every_style_in_every_format("A011", &analysis.mesh, &axis, analysis.measurements.clone());
+}
+
+/// Closed polygon area times the distance its centroid travels (Pappus), mm³.
+fn pappus_volume_mm3(outlines: &[Vec<[f64; 2]>]) -> f64 {
+    let mut moment = 0.0;
+    for o in outlines {
+        for i in 0..o.len() {
+            let (a, b) = (o[i], o[(i + 1) % o.len()]);
+            let cross = a[0] * b[1] - b[0] * a[1];
+            moment += (a[0] + b[0]) * cross / 6.0;
+        }
+    }
+    2.0 * std::f64::consts::PI * moment.abs()
+}
+
+/// Every directed edge once and its reverse once: closed and consistently oriented.
+fn is_watertight(mesh: &Mesh) -> bool {
+    let mut edges = std::collections::HashMap::new();
+    for t in &mesh.triangles {
+        for k in 0..3 {
+            *edges.entry((t[k], t[(k + 1) % 3])).or_insert(0) += 1;
+        }
+    }
+    edges.iter().all(|(&(a, b), &n)| n == 1 && edges.get(&(b, a)) == Some(&1))
+}
+
+/// The reconstruction by revolution of complete profiles (rim to base): watertight, with
+/// the Pappus volume of its section; and the cavity it encloses, revolved from the same
+/// section, holds what the capacity measurement says, within 2%.
+#[test]
+fn reconstruction_is_watertight_and_holds_the_measured_capacity() {
+    use sherd::profile::measure::{measure, MeasureOptions};
+    use sherd::profile::revolve::{enclosed_volume_mm3, revolve_profile};
+    use sherd::profile::section::{most_informative_angle, profile_section, ProfileCurve, ProfileSection};
+    let mut checked = 0;
+    for seed in 0..12 {
+        let sherd = synthetic_sherd(seed, &SherdOptions { target_faces: 8000, ..SherdOptions::for_part(SherdPart::RimToBase).ideal() });
+        if sherd.truth.part != SherdPart::RimToBase {
+            continue;
+        }
+        let (mesh, axis) = (&sherd.mesh, &sherd.truth.axis);
+        let section = profile_section(mesh, axis, most_informative_angle(mesh, axis));
+        let outlines = section.closed_outlines();
+        let vessel = revolve_profile(&section, 720).unwrap();
+        assert!(is_watertight(&vessel), "seed {seed}: the reconstruction has a hole or a flipped face");
+        let (volume, pappus) = (enclosed_volume_mm3(&vessel), pappus_volume_mm3(&outlines));
+        assert!((volume - pappus).abs() < 0.001 * pappus, "seed {seed}: reconstruction {volume} mm³ vs Pappus {pappus} mm³");
+
+        let mut options = MeasureOptions::default();
+        options.bootstrap.samples = 0;
+        let Some(capacity) = measure(mesh, axis, &options).capacity_litres else {
+            println!("seed {seed}: no capacity measured (round bottom)");
+            continue;
+        };
+        // The cavity: from the floor (highest point at the innermost radius) up the inner
+        // wall (innermost crossing at each height) to the rim top, closed along the axis.
+        let points: Vec<[f64; 2]> = outlines.iter().flatten().copied().collect();
+        let innermost = points.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min);
+        let floor = points.iter().filter(|p| p[0] <= innermost + 1.0).map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max);
+        let top = points.iter().map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max);
+        let inner_radius = |z: f64| {
+            let mut r = f64::INFINITY;
+            for o in &outlines {
+                for i in 0..o.len() {
+                    let (a, b) = (o[i], o[(i + 1) % o.len()]);
+                    if (a[1] <= z) != (b[1] <= z) {
+                        r = r.min(a[0] + (z - a[1]) / (b[1] - a[1]) * (b[0] - a[0]));
+                    }
+                }
+            }
+            r
+        };
+        let steps = 400;
+        let mut cavity = vec![[0.0, floor]];
+        cavity.extend((0..=steps).map(|k| {
+            let z = (floor + (top - floor) * k as f64 / steps as f64).clamp(floor + 1e-6, top - 1e-6);
+            [inner_radius(z), z]
+        }));
+        cavity.push([0.0, top]);
+        let cavity = ProfileSection { angle_rad: section.angle_rad, curves: vec![ProfileCurve { points: cavity, closed: true }] };
+        let inside = revolve_profile(&cavity, 720).unwrap();
+        assert!(is_watertight(&inside), "seed {seed}: the cavity is not closed");
+        let litres = enclosed_volume_mm3(&inside).abs() * 1e-6;
+        assert!((litres - capacity).abs() < 0.02 * capacity, "seed {seed}: revolved cavity {litres:.4} l vs measured capacity {capacity:.4} l");
+        checked += 1;
+    }
+    assert!(checked >= 2, "only {checked} complete profiles with a capacity");
 }

@@ -19,7 +19,7 @@ use crate::mesh::occlusion::ambient_occlusion;
 use crate::mesh::Mesh;
 use crate::orient::Axis;
 use crate::profile::measure::{measure, MeasureOptions, Measurements};
-use crate::profile::regularity::{axis_distance_map, distance_to_ideal_vessel, ColorMap, ColorScale};
+use crate::profile::regularity::{axis_distance_map, ideal_vessel_map, ColorMap, ColorScale};
 use crate::profile::section::{angular_extent, most_informative_angle, oriented_frame, section_of_oriented, ProfileSection};
 use crate::{Error, Result};
 
@@ -315,12 +315,9 @@ fn draw_views(
                     }
                     Ok(Some(match options.regularity {
                         RegularityKind::AxisDistance => axis_distance_map(mesh, axis),
-                        RegularityKind::IdealVessel => {
-                            let values: Vec<f32> =
-                                distance_to_ideal_vessel(mesh, axis, section)?.iter().map(|v| v.abs()).collect();
-                            let map = ColorMap::fitted(&values, ColorScale::Rainbow, "distance to ideal vessel", "mm");
-                            (values, map)
-                        }
+                        // The signed map on the diverging scale, as the PLY export and the
+                        // C ABI give it: the legend reads the same range as the export.
+                        RegularityKind::IdealVessel => ideal_vessel_map(mesh, axis, section)?,
                     }))
                 },
             )
@@ -674,9 +671,15 @@ fn add_legend(canvas: &mut Canvas, map: &ColorMap, x: f64, top: f64) {
     let frame = [[x, top - height], [x + width, top - height], [x + width, top], [x, top]];
     children.push(Element::Path(Path::polyline(&frame, true, None, Some(canvas.stroke(0.15, &[])))));
     for (value, z) in [(map.low, top - height), (0.5 * (map.low + map.high), top - height / 2.0), (map.high, top)] {
+        // A diverging scale is signed: "-0.08 mm", "0 mm", "+0.08 mm".
+        let content = match map.scale {
+            ColorScale::Diverging if value.abs() < 1e-12 => format!("0 {}", map.unit),
+            ColorScale::Diverging => format!("{value:+.2} {}", map.unit),
+            ColorScale::Rainbow => format!("{value:.2} {}", map.unit),
+        };
         children.push(Element::Text(Text {
             position: [x + width + 1.5 * scale, z - 1.0 * scale],
-            content: format!("{value:.2} {}", map.unit),
+            content,
             size_mm: 2.6,
             anchor: Anchor::Start,
             color: BLACK,

@@ -44,7 +44,9 @@ pub fn distance_to_ideal_vessel(mesh: &Mesh, axis: &Axis, section: &ProfileSecti
     }
     let grid = SegmentGrid::new(segments);
     let oriented = oriented_positions(mesh, axis);
-    Ok(oriented.par_iter().map(|p| grid.signed_distance([p.x.hypot(p.y), p.z]) as f32).collect())
+    // sqrt, not hypot: a libm call per vertex and per candidate segment was a tenth of
+    // the drawing's time; coordinates in millimetres cannot overflow when squared.
+    Ok(oriented.par_iter().map(|p| grid.signed_distance([(p.x * p.x + p.y * p.y).sqrt(), p.z]) as f32).collect())
 }
 
 /// Segments bucketed in a uniform grid for nearest-segment queries.
@@ -107,7 +109,7 @@ impl SegmentGrid {
                 let length2 = dx * dx + dy * dy;
                 let t = if length2 > 0.0 { (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / length2).clamp(0.0, 1.0) } else { 0.0 };
                 let (qx, qy) = (a[0] + t * dx - p[0], a[1] + t * dy - p[1]);
-                let d = qx.hypot(qy);
+                let d = (qx * qx + qy * qy).sqrt();
                 // Ties (a shared vertex) are broken towards the segment facing p most.
                 let side = dx * (p[1] - a[1]) - dy * (p[0] - a[0]);
                 let side = -side / length2.sqrt().max(1e-300);

@@ -221,6 +221,9 @@ pub struct Oriented {
     pub axis: Axis,
     /// What the pipeline found, when it oriented the scan (`None` with `--axis`).
     pub record: Option<sherd::pipeline::SherdRecord>,
+    /// The pipeline's measurements (`None` with `--axis`): they label the drawing, which
+    /// would otherwise measure the scan a second time.
+    pub measurements: Option<sherd::profile::measure::Measurements>,
     /// Millimetres per unit of the scan file.
     pub millimetres_per_unit: f64,
 }
@@ -258,7 +261,7 @@ pub fn analyse_or_read_axis(scan: &Path, axis_file: Option<&Path>, analysis: &An
             for p in &mut mesh.positions {
                 p.coords *= millimetres_per_unit;
             }
-            Ok(Oriented { mesh, axis, record: None, millimetres_per_unit })
+            Ok(Oriented { mesh, axis, record: None, measurements: None, millimetres_per_unit })
         }
         None => {
             let result = sherd::pipeline::analyse(mesh, &options).map_err(|e| format!("{}: {e}", scan.display()))?;
@@ -270,7 +273,7 @@ pub fn analyse_or_read_axis(scan: &Path, axis_file: Option<&Path>, analysis: &An
             }
             let record = sherd::pipeline::SherdRecord::from_analysis(scan.display().to_string(), &result);
             let axis = *result.axis();
-            Ok(Oriented { mesh: result.mesh, axis, record: Some(record), millimetres_per_unit })
+            Ok(Oriented { mesh: result.mesh, axis, record: Some(record), measurements: result.measurements, millimetres_per_unit })
         }
     }
 }

@@ -40,6 +40,7 @@ pub struct DrawArgs {
 pub fn run(args: DrawArgs) -> Result<ExitCode, String> {
     let draw_options = args.drawing.draw_options()?;
     let mut oriented = analyse_or_read_axis(&args.scan, args.axis.as_deref(), &args.analysis)?;
+    let draw_options = sherd::draw::DrawOptions { measurements: oriented.measurements.take(), ..draw_options };
     let drawing = Drawing::build(&oriented.mesh, &oriented.axis, &draw_options).map_err(|e| e.to_string())?;
     drawing.write(&args.output).map_err(|e| e.to_string())?;
     if args.json {
