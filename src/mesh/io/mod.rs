@@ -6,7 +6,8 @@
 //! element and the offending value, and never allocates more than the file can hold: a
 //! header that declares 10^12 vertices in a 2 kB file is refused before any allocation.
 //! What was read but not kept (unknown elements, a missing texture, degenerate polygons)
-//! is listed in the [`ReadReport`].
+//! is listed in the [`ReadReport`]. The files a scan names (material library, texture)
+//! are read only from inside the scan's folder (`file_in_scan_folder`).
 
 mod obj;
 mod ply_read;
@@ -16,7 +17,7 @@ mod stl;
 mod texture;
 mod units;
 
-use std::path::Path;
+use std::path::{Component, Path, PathBuf};
 
 use serde::Serialize;
 
@@ -92,6 +93,49 @@ fn read_regular_file(path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
     // The file may grow while it is read: never read past the limit either.
     file.take(max_bytes).read_to_end(&mut bytes).map_err(|e| Error::io(path, e))?;
     Ok(bytes)
+}
+
+/// Where a file that a scan refers to (an OBJ's `mtllib`, a MTL's `map_Kd`, a PLY's
+/// `comment TextureFile`) is, provided it lies inside the scan's `folder`: a scan (from a
+/// colleague, an archive, the web) must not make sherd read `/etc/passwd`, another user's
+/// files or a device. Refused: absolute names (`/...`, `C:/...`, `\\server\...`), `..` that
+/// climbs out of the folder, and a name inside the folder that is a symbolic link to
+/// somewhere outside it (checked after canonicalisation). A name that does not exist is
+/// given back as is: reading it then says it is missing.
+///
+/// `what` ("texture", "material library") and `referrer` (the file and line naming it) go
+/// into the message of a refusal, which callers report as a warning: the geometry is good
+/// without the texture.
+fn file_in_scan_folder(folder: &Path, named: &str, what: &str, referrer: &str) -> std::result::Result<PathBuf, String> {
+    let refuse = |why: String| Err(format!("{referrer}: {what} {named:?} refused, not read: {why}; only files inside the scan's folder are read"));
+    // Scans made on Windows separate folders with backslashes.
+    let relative = named.replace('\\', "/");
+    let bytes = relative.as_bytes();
+    let drive_letter = bytes.len() >= 2 && bytes[0].is_ascii_alphabetic() && bytes[1] == b':';
+    if relative.starts_with('/') || drive_letter {
+        return refuse("it is an absolute path".into());
+    }
+    let mut depth = 0_i64;
+    for component in Path::new(&relative).components() {
+        match component {
+            Component::Normal(_) => depth += 1,
+            Component::ParentDir => depth -= 1,
+            Component::CurDir => {}
+            Component::RootDir | Component::Prefix(_) => return refuse("it is an absolute path".into()),
+        }
+        if depth < 0 {
+            return refuse("its \"..\" leads out of the scan's folder".into());
+        }
+    }
+    let path = folder.join(&relative);
+    // A folder given as "" (a scan named without a folder) is the current one.
+    let folder = if folder.as_os_str().is_empty() { Path::new(".") } else { folder };
+    if let (Ok(target), Ok(folder)) = (path.canonicalize(), folder.canonicalize()) {
+        if !target.starts_with(&folder) {
+            return refuse(format!("it is a symbolic link to {}, outside the scan's folder", target.display()));
+        }
+    }
+    Ok(path)
 }
 
 /// Parses `bytes` as the content of the file `path`: the extension chooses the reader,
@@ -179,5 +223,32 @@ mod tests {
     fn foreign_files_are_named() {
         assert_eq!(foreign_signature(b"\x89PNG\r\n\x1a\nrest"), Some("PNG image"));
         assert_eq!(foreign_signature(b"ply\nformat ascii 1.0\n"), None);
+    }
+
+    #[test]
+    fn only_files_inside_the_scan_folder_are_given() {
+        let scan = tempfile::tempdir().unwrap();
+        let outside = tempfile::tempdir().unwrap();
+        std::fs::create_dir(scan.path().join("textures")).unwrap();
+        std::fs::write(scan.path().join("textures/skin.png"), b"x").unwrap();
+        std::fs::write(outside.path().join("secret.png"), b"x").unwrap();
+        std::os::unix::fs::symlink(outside.path().join("secret.png"), scan.path().join("link.png")).unwrap();
+        std::os::unix::fs::symlink(scan.path().join("textures/skin.png"), scan.path().join("inner_link.png")).unwrap();
+        let check = |named: &str| file_in_scan_folder(scan.path(), named, "texture", "scan.obj line 3");
+        for inside in ["textures/skin.png", "./textures/../textures/skin.png", "inner_link.png", "absent.png", "textures\\skin.png"] {
+            assert!(check(inside).is_ok(), "{inside}: {:?}", check(inside));
+        }
+        for (hostile, why) in [
+            ("/etc/passwd", "absolute path"),
+            ("C:/Users/me/skin.png", "absolute path"),
+            ("\\\\server\\share\\skin.png", "absolute path"),
+            ("../../etc/passwd", "leads out"),
+            ("textures/../../skin.png", "leads out"),
+            ("..\\..\\skin.png", "leads out"),
+            ("link.png", "symbolic link to"),
+        ] {
+            let message = check(hostile).unwrap_err();
+            assert!(message.contains(why) && message.contains("scan.obj line 3") && message.contains(hostile.replace('\\', "\\\\").as_str()), "{hostile}: {message}");
+        }
     }
 }

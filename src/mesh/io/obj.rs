@@ -31,7 +31,8 @@ struct Parser<'a> {
     corners_without_uv: usize,
     normal_sums: Vec<Vector>,
     vertices_with_normals: usize,
-    material_libraries: Vec<String>,
+    /// Each `mtllib` name with its line number.
+    material_libraries: Vec<(String, usize)>,
     used_materials: Vec<String>,
 }
 
@@ -148,7 +149,7 @@ impl Parser<'_> {
                 self.normals.push(Vector::new(values[0], values[1], values[2]));
             }
             b"f" | b"fo" => self.face(arguments)?,
-            b"mtllib" => self.material_libraries.push(String::from_utf8_lossy(raw.trim_ascii()[6..].trim_ascii()).into_owned()),
+            b"mtllib" => self.material_libraries.push((String::from_utf8_lossy(raw.trim_ascii()[6..].trim_ascii()).into_owned(), self.line_number)),
             b"usemtl" => {
                 let material = String::from_utf8_lossy(raw.trim_ascii()[6..].trim_ascii()).into_owned();
                 if !self.used_materials.contains(&material) {
@@ -174,16 +175,16 @@ impl Parser<'_> {
     }
 }
 
-/// The `map_Kd` file of each material of a MTL file, in order.
-fn parse_material_library(text: &str) -> Vec<(String, Option<String>)> {
-    let mut materials: Vec<(String, Option<String>)> = Vec::new();
-    for line in text.lines() {
+/// The `map_Kd` file of each material of a MTL file, in order, with its line number.
+fn parse_material_library(text: &str) -> Vec<(String, Option<(String, usize)>)> {
+    let mut materials: Vec<(String, Option<(String, usize)>)> = Vec::new();
+    for (index, line) in text.lines().enumerate() {
         let line = line.trim();
         if let Some(name) = line.strip_prefix("newmtl") {
             materials.push((name.trim().to_string(), None));
         } else if let Some(arguments) = line.strip_prefix("map_Kd") {
             if let Some((_, map)) = materials.last_mut() {
-                *map = Some(texture_file_of(arguments.trim()));
+                *map = Some((texture_file_of(arguments.trim()), index + 1));
             }
         }
     }
@@ -275,36 +276,48 @@ pub(super) fn parse_obj(bytes: &[u8], name: &str, folder: Option<&Path>) -> Resu
         }
         mesh.corner_uvs = Some(corner_uvs);
     }
-    load_material_texture(&mut mesh, &mut report, folder, &material_libraries, &used_materials, has_uvs);
+    load_material_texture(&mut mesh, &mut report, name, folder, &material_libraries, &used_materials, has_uvs);
     Ok((mesh, report))
 }
 
 /// Loads the texture of the first used material that has a `map_Kd`; anything missing on
-/// the way (MTL file, image) is a warning, not an error: the geometry is still usable.
-fn load_material_texture(mesh: &mut Mesh, report: &mut ReadReport, folder: Option<&Path>, libraries: &[String], used: &[String], has_uvs: bool) {
+/// the way (MTL file, image) or outside the scan's folder is a warning, not an error: the
+/// geometry is still usable.
+fn load_material_texture(mesh: &mut Mesh, report: &mut ReadReport, name: &str, folder: Option<&Path>, libraries: &[(String, usize)], used: &[String], has_uvs: bool) {
     let Some(folder) = folder else {
         if !libraries.is_empty() {
             report.warn("material library not loaded: reading from a stream, its folder is unknown");
         }
         return;
     };
-    let mut materials = Vec::new();
-    for library in libraries {
-        let path = folder.join(library);
+    // Each material with its texture file and where that file is named ("x.mtl line 4").
+    let mut materials: Vec<(String, Option<(String, String)>)> = Vec::new();
+    for (library, line) in libraries {
+        let path = match super::file_in_scan_folder(folder, library, "material library", &format!("{name} line {line}")) {
+            Ok(path) => path,
+            Err(refusal) => {
+                report.warn(refusal);
+                continue;
+            }
+        };
         match super::read_regular_file(&path, super::MAX_MATERIAL_LIBRARY_BYTES) {
-            Ok(bytes) => materials.extend(parse_material_library(&String::from_utf8_lossy(&bytes))),
+            Ok(bytes) => materials.extend(
+                parse_material_library(&String::from_utf8_lossy(&bytes))
+                    .into_iter()
+                    .map(|(material, map)| (material, map.map(|(file, line)| (file, format!("{} line {line}", path.display()))))),
+            ),
             Err(error) => report.warn(format!("material library not loaded: {error}")),
         }
     }
-    let mut textures: Vec<&String> = Vec::new();
+    let mut textures: Vec<&(String, String)> = Vec::new();
     for (material, map) in &materials {
         if let Some(map) = map {
-            if (used.is_empty() || used.contains(material)) && !textures.contains(&map) {
+            if (used.is_empty() || used.contains(material)) && !textures.iter().any(|(file, _)| *file == map.0) {
                 textures.push(map);
             }
         }
     }
-    let Some(first) = textures.first() else { return };
+    let Some((first, named_at)) = textures.first() else { return };
     if textures.len() > 1 {
         report.warn(format!("{} textures are used; only the first ({first}) is kept", textures.len()));
     }
@@ -312,7 +325,10 @@ fn load_material_texture(mesh: &mut Mesh, report: &mut ReadReport, folder: Optio
         report.warn(format!("texture {first} not loaded: the faces have no texture coordinates"));
         return;
     }
-    let path = folder.join(first);
+    let path = match super::file_in_scan_folder(folder, first, "texture", named_at) {
+        Ok(path) => path,
+        Err(refusal) => return report.warn(refusal),
+    };
     match texture::load_texture(&path) {
         Ok(image) => mesh.texture = Some(image),
         Err(error) => report.warn(format!("texture missing or unreadable, not loaded: {error}")),

@@ -133,7 +133,8 @@ enum Encoding {
 struct Header {
     encoding: Encoding,
     elements: Vec<Element>,
-    texture_files: Vec<String>,
+    /// Each `comment TextureFile` name with its header line.
+    texture_files: Vec<(String, usize)>,
     /// The unit the first comment naming one declares.
     declared_unit: Option<super::LengthUnit>,
     /// Byte offset of the body.
@@ -181,7 +182,7 @@ fn parse_header(bytes: &[u8], name: &str) -> Result<Header> {
                 let rest: Vec<&str> = words.collect();
                 declared_unit = declared_unit.or_else(|| super::unit_declared_in(&rest.join(" ")));
                 if rest.first().is_some_and(|w| w.eq_ignore_ascii_case("TextureFile")) && rest.len() > 1 {
-                    texture_files.push(rest[1..].join(" "));
+                    texture_files.push((rest[1..].join(" "), line_number));
                 }
             }
             "format" => {
@@ -929,11 +930,14 @@ pub(super) fn parse_ply(bytes: &[u8], name: &str, folder: Option<&Path>) -> Resu
             mesh.corner_uvs = Some(mesh.triangles.iter().flat_map(|t| t.map(|v| uvs[v as usize])).collect());
         }
     }
-    if let Some(file) = header.texture_files.first() {
+    if let Some((file, line)) = header.texture_files.first() {
         match folder {
-            Some(folder) => match texture::load_texture(&folder.join(file)) {
-                Ok(image) => mesh.texture = Some(image),
-                Err(error) => report.warn(format!("texture {file} named in the header not loaded: {error}")),
+            Some(folder) => match super::file_in_scan_folder(folder, file, "texture", &format!("{name} header line {line}")) {
+                Ok(path) => match texture::load_texture(&path) {
+                    Ok(image) => mesh.texture = Some(image),
+                    Err(error) => report.warn(format!("texture {file} named in the header not loaded: {error}")),
+                },
+                Err(refusal) => report.warn(refusal),
             },
             None => report.warn(format!("texture {file} named in the header not loaded: reading from a stream, its folder is unknown")),
         }
