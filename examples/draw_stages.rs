@@ -1,5 +1,6 @@
-//! Wall time of each stage of the illustration of a 500k-face synthetic rim sherd, and of
-//! the whole build per style. Run under `/usr/bin/time -v` for CPU time on a busy machine.
+//! Wall and CPU time of each stage of the illustration of a 500k-face synthetic rim sherd, and of
+//! the whole build per style (CPU time: user + system of all threads, what a busy machine
+//! does not inflate as much as the wall clock).
 //!
 //!     cargo run --release --example draw_stages [FACES]
 
@@ -15,10 +16,12 @@ fn main() -> sherd::Result<()> {
     let sherd = synthetic_sherd(5, &SherdOptions { target_faces: faces, ..SherdOptions::for_part(SherdPart::Rim) });
     let (mesh, axis) = (&sherd.mesh, &sherd.truth.axis);
     println!("{} faces, {} vertices", mesh.face_count(), mesh.vertex_count());
+    // CPU seconds (user + system, all threads) beside the wall clock: on a shared machine
+    // the wall clock measures the load, CPU time the work.
     let time = |name: &str, f: &mut dyn FnMut()| {
-        let start = Instant::now();
+        let (start, cpu) = (Instant::now(), cpu_seconds());
         f();
-        println!("{name:<48} {:>8.3} s", start.elapsed().as_secs_f64());
+        println!("{name:<48} {:>8.3} s wall {:>8.3} CPU-s", start.elapsed().as_secs_f64(), cpu_seconds() - cpu);
     };
     let mut angle = 0.0;
     time("most_informative_angle", &mut || angle = most_informative_angle(mesh, axis));
@@ -42,13 +45,13 @@ fn main() -> sherd::Result<()> {
     sherd::mesh::io::write_ply(&input, mesh, sherd::mesh::io::PlyEncoding::BinaryLittleEndian)?;
     for rays in [32, 128] {
         let script = format!(
-            "import pymeshlab, time\nms = pymeshlab.MeshSet()\nms.load_new_mesh({:?})\nt = time.time()\n\
-             ms.compute_scalar_ambient_occlusion(rays={rays})\nprint(time.time() - t)\n",
+            "import pymeshlab, time\nms = pymeshlab.MeshSet()\nms.load_new_mesh({:?})\nt, c = time.time(), time.process_time()\n\
+             ms.compute_scalar_ambient_occlusion(rays={rays})\nprint(f'{{time.time() - t:8.3f}} s wall {{time.process_time() - c:8.3f}} CPU-s')\n",
             input.to_str().unwrap_or_default()
         );
         match std::process::Command::new("python3").args(["-c", &script]).output() {
             Ok(out) if out.status.success() => println!(
-                "{:<48} {:>8} s",
+                "{:<48} {}",
                 format!("pymeshlab ambient occlusion rays={rays}"),
                 String::from_utf8_lossy(&out.stdout).trim()
             ),
@@ -56,6 +59,14 @@ fn main() -> sherd::Result<()> {
         }
     }
     let _ = std::fs::remove_dir_all(&dir);
+    let mut measure_options = sherd::profile::measure::MeasureOptions::default();
+    measure_options.bootstrap.samples = 0;
+    let measured = sherd::profile::measure::measure(mesh, axis, &measure_options);
+    let all = Style::parse("linear,colour,light,occlusion,stipple,regularity")?;
+    let given = DrawOptions { style: all, measurements: Some(measured), ..Default::default() };
+    time("build all six styles, measurements given", &mut || {
+        Drawing::build(mesh, axis, &given).unwrap();
+    });
     for style in ["linear", "light", "colour", "regularity", "light,occlusion", "stipple", "linear,colour,light,occlusion,stipple,regularity"] {
         let options = DrawOptions { style: Style::parse(style)?, ..Default::default() };
         let mut drawing = None;
@@ -70,4 +81,19 @@ fn main() -> sherd::Result<()> {
         }
     }
     Ok(())
+}
+
+/// User + system CPU time of the whole process so far, seconds (0 where unavailable).
+fn cpu_seconds() -> f64 {
+    #[cfg(unix)]
+    {
+        let mut usage = std::mem::MaybeUninit::<libc::rusage>::zeroed();
+        // SAFETY: getrusage fills the struct it is given; RUSAGE_SELF is always valid.
+        if unsafe { libc::getrusage(libc::RUSAGE_SELF, usage.as_mut_ptr()) } == 0 {
+            let usage = unsafe { usage.assume_init() };
+            let seconds = |t: libc::timeval| t.tv_sec as f64 + t.tv_usec as f64 * 1e-6;
+            return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+        }
+    }
+    0.0
 }

@@ -240,7 +240,10 @@ pub(crate) fn build(mesh: &Mesh, axis: &Axis, options: &DrawOptions) -> Result<D
     add_annotations(&mut canvas, &profile, &measurements, exterior_right, options);
     add_scale_bar(&mut canvas, z_bottom - 9.0 * scale, exterior_right, &profile);
     if let Some(map) = &regularity_map {
-        add_legend(&mut canvas, map, exterior_right + 8.0 * scale, z_top);
+        // Right of everything: the dashed prolongation reaches the full radius, often
+        // beyond the exterior view, and must not run through the legend's labels.
+        let right = if options.prolongation { exterior_right.max(profile.outer_radius_max) } else { exterior_right };
+        add_legend(&mut canvas, map, right + 8.0 * scale, z_top);
     }
     if let Some(title) = &options.title {
         let x = -profile.outer_radius_max;
