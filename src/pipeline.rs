@@ -32,7 +32,8 @@ pub struct PipelineOptions {
     pub manual_points: Option<[Point; 3]>,
     /// Options of the manual pre-orientation.
     pub manual: ManualOptions,
-    /// Refinement after pre-orientation; `None` keeps the pre-orientation.
+    /// Refinement after pre-orientation (also of an axis whose sense is uncertain);
+    /// `None` keeps the pre-orientation.
     pub refine: Option<RefineOptions>,
     /// Measurements.
     pub measure: MeasureOptions,
@@ -60,7 +61,7 @@ pub struct Analysis {
     pub orientation: Orientation,
     /// The refinement, when asked for and the pre-orientation succeeded.
     pub refinement: Option<Refinement>,
-    /// Measurements along the final axis, when the sherd is oriented.
+    /// Measurements along the final axis, when the axis line is found (sense certain or not).
     pub measurements: Option<Measurements>,
     /// Seconds spent in each step.
     pub timings: Timings,
@@ -85,9 +86,9 @@ impl Analysis {
         self.refinement.as_ref().map_or(&self.orientation.axis, |r| &r.axis)
     }
 
-    /// True when the sherd got an axis the pipeline stands behind.
+    /// True when the sherd got an axis the pipeline stands behind, sense included.
     pub fn is_oriented(&self) -> bool {
-        matches!(self.orientation.verdict, Verdict::Oriented)
+        self.orientation.verdict.is_oriented()
     }
 }
 
@@ -132,16 +133,18 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
         _ => &mesh,
     };
 
-    let oriented = orientation.verdict.is_oriented();
+    // The line is refined and measured when only its sense is uncertain: radii, sector and
+    // thickness do not depend on which way is up.
+    let has_line = orientation.verdict.has_axis_line();
     let clock = Instant::now();
-    let refinement = match (&options.refine, oriented) {
+    let refinement = match (&options.refine, has_line) {
         (Some(refine_options), true) => Some(refine(refine_mesh, &orientation.axis, refine_options)?),
         _ => None,
     };
     timings.refine_s = clock.elapsed().as_secs_f64();
 
     let mut measurements = None;
-    if oriented {
+    if has_line {
         let clock = Instant::now();
         let axis = refinement.as_ref().map_or(&orientation.axis, |r| &r.axis);
         measurements = Some(measure_with_bootstrap_mesh(&mesh, bootstrap_mesh, axis, &options.measure));
@@ -181,8 +184,8 @@ pub fn analyse_file(path: &Path, options: &PipelineOptions) -> Result<Analysis> 
     Ok(analysis)
 }
 
-/// Reads `path`, analyses it and, when `drawing` is given and the sherd is oriented, draws
-/// it to that file. Never fails: an unreadable or unorientable scan is a record whose
+/// Reads `path`, analyses it and, when `drawing` is given and the sherd is oriented (its
+/// sense certain: a drawing upside down would mislead), draws it to that file. Never fails: an unreadable or unorientable scan is a record whose
 /// status says so, so that a batch goes on.
 pub fn process_file(path: &Path, options: &PipelineOptions, drawing: Option<(&DrawOptions, &Path)>) -> SherdRecord {
     let file = path.display().to_string();
@@ -220,6 +223,9 @@ pub fn process_file(path: &Path, options: &PipelineOptions, drawing: Option<(&Dr
 pub const STATUS_OK: &str = "ok";
 /// Status of a sherd whose data do not determine an axis.
 pub const STATUS_NEEDS_MANUAL: &str = "needs_manual_orientation";
+/// Status of a sherd whose axis line is found, refined and measured, but not which way is
+/// up (base to rim): not drawn.
+pub const STATUS_SENSE_UNCERTAIN: &str = "sense_uncertain";
 /// Status of a sherd that could not be processed (the reason is in `error`).
 pub const STATUS_ERROR: &str = "error";
 
@@ -228,9 +234,9 @@ pub const STATUS_ERROR: &str = "error";
 pub struct SherdRecord {
     /// The scan file.
     pub file: String,
-    /// `ok`, `needs_manual_orientation` or `error`.
+    /// `ok`, `sense_uncertain`, `needs_manual_orientation` or `error`.
     pub status: String,
-    /// Why the sherd needs manual orientation.
+    /// Why the sherd needs manual orientation, or why its sense is uncertain.
     pub reason: Option<String>,
     /// The error's message, when `status` is `error`.
     pub error: Option<String>,
@@ -285,6 +291,10 @@ impl SherdRecord {
         record.method = Some(method);
         match &orientation.verdict {
             Verdict::Oriented => record.status = STATUS_OK.into(),
+            Verdict::SenseUncertain { reason } => {
+                record.status = STATUS_SENSE_UNCERTAIN.into();
+                record.reason = Some(reason.clone());
+            }
             Verdict::NeedsManualOrientation { reason } => {
                 record.status = STATUS_NEEDS_MANUAL.into();
                 record.reason = Some(reason.clone());

@@ -49,6 +49,10 @@ fn the_c_abi_gives_the_rust_api_result_bit_for_bit() {
                 assert_eq!(status, SherdStatus::NeedsManualOrientation);
                 assert!(message.ends_with(&reason), "{message} / {reason}");
             }
+            Verdict::SenseUncertain { reason } => {
+                assert_eq!(status, SherdStatus::SenseUncertain);
+                assert!(message.ends_with(&reason), "{message} / {reason}");
+            }
         }
     }
 }

@@ -120,8 +120,8 @@ pub unsafe extern "C" fn sherd_mesh_oriented_transform(
 pub struct SherdOrientReport {
     /// `sizeof(SherdOrientReport)`, set by the caller.
     pub size: usize,
-    /// True when the data determine the axis; false with
-    /// `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION`.
+    /// True when the data determine the axis and its sense; false with
+    /// `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` and `SHERD_STATUS_SENSE_UNCERTAIN`.
     pub oriented: bool,
     /// Calibrated uncertainty of the direction, degrees (NaN for a manual axis).
     pub angle_uncertainty_deg: f64,
@@ -139,7 +139,8 @@ unsafe impl SizedStruct for SherdOrientReport {
 
 /// Hands an orientation to the host: the axis always (the best estimate, also when it
 /// needs a human), the report when asked for, and `NEEDS_MANUAL_ORIENTATION` with the
-/// reason as the status when the data do not determine the axis.
+/// reason as the status when the data do not determine the axis, `SENSE_UNCERTAIN` when
+/// they determine its line but not which way it points.
 unsafe fn hand_out_orientation(
     orientation: &Orientation,
     out_axis: *mut SherdAxis,
@@ -163,6 +164,7 @@ unsafe fn hand_out_orientation(
         Verdict::NeedsManualOrientation { reason } => {
             Err(Failure::new(SherdStatus::NeedsManualOrientation, reason.clone()))
         }
+        Verdict::SenseUncertain { reason } => Err(Failure::new(SherdStatus::SenseUncertain, reason.clone())),
     }
 }
 
@@ -186,6 +188,8 @@ fn check_orientation_outputs(out_axis: *mut SherdAxis, out_report: *mut SherdOri
 /// its axis (a flat base piece, a near-spherical piece, one too small): the axis is
 /// still written, as a best guess not to be trusted, and the message gives the reason;
 /// ask the user for three points (`sherd_orient_from_three_points`).
+/// Returns `SHERD_STATUS_SENSE_UNCERTAIN` when the axis line is determined but not which
+/// way is up (base to rim): the axis is written, its sense a guess.
 ///
 /// # Safety
 /// `mesh` must be a live handle; `options` NULL or live; the out-pointers writable or,

@@ -12,7 +12,7 @@ use super::panic::guard;
 use super::pointers::{borrow, checked_size, path_from, write_sized};
 use super::status::SherdStatus;
 use crate::orient::Axis;
-use crate::pipeline::{Analysis, PipelineOptions, STATUS_NEEDS_MANUAL, SherdRecord};
+use crate::pipeline::{Analysis, PipelineOptions, STATUS_NEEDS_MANUAL, STATUS_SENSE_UNCERTAIN, SherdRecord};
 
 /// The pipeline's options: scan units and the refinement (NULL: the command-line tool's
 /// default, criterion AUTO on both surfaces). Checks `out_axis` too, before the long work.
@@ -41,8 +41,9 @@ unsafe fn pipeline_options(
 }
 
 /// Hands the pipeline's outcome to the host: the record as JSON (a failed one on error),
-/// the axis (scan frame and units) when the sherd is oriented, and the status: the
-/// error's own, NEEDS_MANUAL_ORIENTATION with the reason, or OK.
+/// the axis (scan frame and units) when the sherd is oriented (also when only its sense
+/// is uncertain), and the status: the error's own, NEEDS_MANUAL_ORIENTATION or
+/// SENSE_UNCERTAIN with the reason, or OK.
 unsafe fn hand_out_analysis(
     file: String,
     analysis: crate::Result<Analysis>,
@@ -63,6 +64,7 @@ unsafe fn hand_out_analysis(
     unsafe { hand_out_report(out_record_json, &record) }?;
     match record.status.as_str() {
         STATUS_NEEDS_MANUAL => Err(Failure::new(SherdStatus::NeedsManualOrientation, record.reason.clone().unwrap_or_default())),
+        STATUS_SENSE_UNCERTAIN => Err(Failure::new(SherdStatus::SenseUncertain, record.reason.clone().unwrap_or_default())),
         _ => Ok(()),
     }
 }
@@ -74,7 +76,8 @@ unsafe fn hand_out_analysis(
 /// `millimetres_per_unit` is 1 for scans in millimetres.
 ///
 /// Returns `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` (record written, no axis) when the
-/// sherd does not determine its axis. When the scan cannot be read or processed the
+/// sherd does not determine its axis; `SHERD_STATUS_SENSE_UNCERTAIN` (record and axis
+/// written, refined and measured) when it determines the axis line but not which way is up. When the scan cannot be read or processed the
 /// record (status `"error"`) is still written, no axis, and the status says why:
 /// `SHERD_STATUS_IO`, `SHERD_STATUS_PARSE`, `SHERD_STATUS_NOT_CONVERGED`...
 ///

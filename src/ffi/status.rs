@@ -38,11 +38,15 @@ pub enum SherdStatus {
     /// A bug inside sherd was caught at the boundary (a Rust panic). The message says
     /// where; please report it. The handles passed to the call remain valid to free.
     Panic = 10,
+    /// The axis line is found but not which way it points (base to rim): the sense cues
+    /// are weak or disagree. Outputs are still written (the axis, refined and measured
+    /// by the pipeline); the message gives the reason. Check the sense, or ask the user.
+    SenseUncertain = 11,
 }
 
 impl SherdStatus {
     /// Every status, in code order.
-    pub const ALL: [SherdStatus; 11] = [
+    pub const ALL: [SherdStatus; 12] = [
         SherdStatus::Ok,
         SherdStatus::InvalidArgument,
         SherdStatus::NullPointer,
@@ -54,6 +58,7 @@ impl SherdStatus {
         SherdStatus::NotConverged,
         SherdStatus::NeedsManualOrientation,
         SherdStatus::Panic,
+        SherdStatus::SenseUncertain,
     ];
 
     /// The name of the C constant, NUL-terminated.
@@ -70,6 +75,7 @@ impl SherdStatus {
             SherdStatus::NotConverged => "SHERD_STATUS_NOT_CONVERGED\0",
             SherdStatus::NeedsManualOrientation => "SHERD_STATUS_NEEDS_MANUAL_ORIENTATION\0",
             SherdStatus::Panic => "SHERD_STATUS_PANIC\0",
+            SherdStatus::SenseUncertain => "SHERD_STATUS_SENSE_UNCERTAIN\0",
         }
     }
 }

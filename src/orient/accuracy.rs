@@ -29,8 +29,10 @@ pub struct FragmentOutcome {
     pub mean_point_distance_mm: f64,
     /// The same with the sense taken from the truth: the error of the line alone, mm.
     pub line_point_distance_mm: f64,
-    /// Flagged NEEDS_MANUAL_ORIENTATION.
+    /// Flagged: NEEDS_MANUAL_ORIENTATION or SENSE_UNCERTAIN.
     pub flagged: bool,
+    /// Flagged SENSE_UNCERTAIN (the axis line accepted, its sense not).
+    pub sense_uncertain: bool,
     /// The flag's reason, or the error message.
     pub reason: String,
     /// The fit's uncalibrated direction standard error, degrees.
@@ -90,6 +92,7 @@ pub fn evaluate(id: String, sherd: &SynthSherd, options: &OrientOptions) -> Frag
         mean_point_distance_mm: f64::INFINITY,
         line_point_distance_mm: f64::INFINITY,
         flagged: true,
+        sense_uncertain: false,
         reason: String::new(),
         raw_angle_sigma_deg: f64::INFINITY,
         normal_spread: 0.0,
@@ -123,8 +126,9 @@ fn fill(outcome: &mut FragmentOutcome, sherd: &SynthSherd, orientation: &Orienta
     let same_sense = if outcome.sense_correct { *axis } else { axis.flipped() };
     outcome.line_point_distance_mm = mean_point_distance_mm(points, &same_sense, truth);
     outcome.flagged = !orientation.verdict.is_oriented();
-    if let super::Verdict::NeedsManualOrientation { reason } = &orientation.verdict {
-        outcome.reason = reason.clone();
+    outcome.sense_uncertain = matches!(orientation.verdict, super::Verdict::SenseUncertain { .. });
+    if let Some(reason) = orientation.verdict.reason() {
+        outcome.reason = reason.to_owned();
     }
     let report = &orientation.report;
     outcome.raw_angle_sigma_deg = report.raw_angle_sigma_deg;
@@ -158,8 +162,10 @@ pub struct Summary {
     pub mean_point_distance_unflagged_mm: f64,
     /// Median of the paper's distance over all fragments, mm.
     pub median_point_distance_mm: f64,
-    /// Fraction flagged NEEDS_MANUAL_ORIENTATION.
+    /// Fraction flagged (NEEDS_MANUAL_ORIENTATION or SENSE_UNCERTAIN).
     pub flagged_fraction: f64,
+    /// Fraction flagged SENSE_UNCERTAIN (the rest of the flagged have their line refused).
+    pub sense_uncertain_fraction: f64,
     /// Fraction wrong by angle (over 5 deg) and not flagged.
     pub wrong_angle_unflagged_fraction: f64,
     /// Fraction wrong by distance (over 4 mm, sense included) and not flagged.
@@ -194,6 +200,7 @@ impl Summary {
             mean_point_distance_unflagged_mm: unflagged.iter().map(|o| o.mean_point_distance_mm).sum::<f64>() / kept_count,
             median_point_distance_mm: quantile(&mut distances, 0.5),
             flagged_fraction: outcomes.iter().filter(|o| o.flagged).count() as f64 / n,
+            sense_uncertain_fraction: outcomes.iter().filter(|o| o.sense_uncertain).count() as f64 / n,
             wrong_angle_unflagged_fraction: outcomes.iter().filter(|o| o.wrong_angle_unflagged()).count() as f64 / n,
             wrong_distance_unflagged_fraction: outcomes.iter().filter(|o| o.wrong_distance_unflagged()).count() as f64 / n,
             sense_correct_fraction: unflagged.iter().filter(|o| o.sense_correct).count() as f64 / kept_count,
@@ -203,7 +210,7 @@ impl Summary {
     /// One Markdown table row: `| label | n | ... |`.
     pub fn table_row(&self, label: &str) -> String {
         format!(
-            "| {label} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.1}% | {:.1}% | {:.1}% | {:.1}% |",
+            "| {label} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.1}% | {:.1}% | {:.1}% | {:.1}% | {:.1}% | {:.1}% |",
             self.count,
             self.median_angle_deg,
             self.p95_angle_deg,
@@ -211,6 +218,8 @@ impl Summary {
             self.p95_angle_unflagged_deg,
             self.mean_point_distance_unflagged_mm,
             100.0 * self.flagged_fraction,
+            100.0 * (self.flagged_fraction - self.sense_uncertain_fraction),
+            100.0 * self.sense_uncertain_fraction,
             100.0 * self.wrong_angle_unflagged_fraction,
             100.0 * self.wrong_distance_unflagged_fraction,
             100.0 * self.sense_correct_fraction
@@ -219,6 +228,6 @@ impl Summary {
 
     /// The header matching [`Summary::table_row`].
     pub fn table_header() -> String {
-        "| set | n | median deg | p95 deg | median deg (unflagged) | p95 deg (unflagged) | mean point dist mm (unflagged) | flagged | wrong >5deg unflagged | wrong >4mm unflagged | sense right (unflagged) |\n|---|---|---|---|---|---|---|---|---|---|---|".into()
+        "| set | n | median deg | p95 deg | median deg (unflagged) | p95 deg (unflagged) | mean point dist mm (unflagged) | flagged | line refused | sense uncertain | wrong >5deg unflagged | wrong >4mm unflagged | sense right (unflagged) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|".into()
     }
 }

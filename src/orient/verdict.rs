@@ -25,12 +25,33 @@ pub enum Verdict {
         /// Why, in the archaeologist's terms, with the figure that decided.
         reason: String,
     },
+    /// The axis line is determined but not which way it points (base to rim): the sense
+    /// cues are weak or disagree. The line can be refined and measured (radii and the
+    /// sector do not depend on the sense); a drawing would be upside down as often as not.
+    SenseUncertain {
+        /// Which cues were weak or disagreed, with their figures.
+        reason: String,
+    },
 }
 
 impl Verdict {
     /// True for [`Verdict::Oriented`].
     pub fn is_oriented(&self) -> bool {
         matches!(self, Verdict::Oriented)
+    }
+
+    /// True when the axis line can be used: [`Verdict::Oriented`] or
+    /// [`Verdict::SenseUncertain`].
+    pub fn has_axis_line(&self) -> bool {
+        matches!(self, Verdict::Oriented | Verdict::SenseUncertain { .. })
+    }
+
+    /// Why the verdict is not [`Verdict::Oriented`], if it is not.
+    pub fn reason(&self) -> Option<&str> {
+        match self {
+            Verdict::Oriented => None,
+            Verdict::NeedsManualOrientation { reason } | Verdict::SenseUncertain { reason } => Some(reason),
+        }
     }
 }
 
@@ -186,10 +207,10 @@ pub fn judge(
         ));
     }
     if !(report.direction_strength >= limits.min_sense_confidence) {
-        return flag(format!(
+        return Verdict::SenseUncertain { reason: format!(
             "the axis line is found but not which way is up (base to rim): {} (confidence {:.2} < {:.2})",
             report.direction_cue, report.direction_strength, limits.min_sense_confidence
-        ));
+        ) };
     }
     Verdict::Oriented
 }

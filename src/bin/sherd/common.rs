@@ -265,11 +265,18 @@ pub fn analyse_or_read_axis(scan: &Path, axis_file: Option<&Path>, analysis: &An
         }
         None => {
             let result = sherd::pipeline::analyse(mesh, &options).map_err(|e| format!("{}: {e}", scan.display()))?;
-            if let sherd::orient::Verdict::NeedsManualOrientation { reason } = &result.orientation.verdict {
-                return Err(format!(
-                    "{}: needs manual orientation ({reason}); give three points with --manual or an axis with --axis",
+            match &result.orientation.verdict {
+                sherd::orient::Verdict::NeedsManualOrientation { reason } => {
+                    return Err(format!(
+                        "{}: needs manual orientation ({reason}); give three points with --manual or an axis with --axis",
+                        scan.display()
+                    ));
+                }
+                sherd::orient::Verdict::SenseUncertain { reason } => eprintln!(
+                    "warning: {}: the sense of the axis is uncertain ({reason}); the result may be upside down: check it, or give an axis with --axis",
                     scan.display()
-                ));
+                ),
+                sherd::orient::Verdict::Oriented => {}
             }
             let record = sherd::pipeline::SherdRecord::from_analysis(scan.display().to_string(), &result);
             let axis = *result.axis();

@@ -15,9 +15,10 @@ use crate::common::AnalysisArgs;
     about = "Find the rotation axis of the vessel a sherd came from, and measure it",
     after_help = "Examples:\n  sherd orient A011.ply\n  sherd orient A011.ply --json > A011.axis.json\n  sherd orient A011.ply --refine tangent --surface outer\n  sherd orient body.ply --manual \"10,2,40;-31,5,38;4,-28,41\"   # three points on a rill\n\n\
 The axis is given in the scan's own frame and units, pointing from base to rim.\n\
-A sherd whose shape does not determine an axis (flat, near spherical, too small), or\n\
-not which way is up (no level rim, no floor, a wall that hardly flares), is reported\n\
-as needs_manual_orientation with the reason; the exit code is 0 for it too."
+A sherd whose shape does not determine an axis (flat, near spherical, too small) is\n\
+reported as needs_manual_orientation with the reason; one whose axis line is found but\n\
+not which way is up (no level rim, no floor, a wall that hardly flares) as\n\
+sense_uncertain, still refined and measured. The exit code is 0 for both."
 )]
 pub struct OrientArgs {
     /// The scan: .ply, .obj, .stl, .xyz or .pts.
