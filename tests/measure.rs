@@ -2,7 +2,7 @@
 
 use sherd::mesh::{Mesh, Point};
 use sherd::orient::Axis;
-use sherd::profile::measure::{measure, MeasureOptions};
+use sherd::profile::measure::{measure, MeasureOptions, MAX_UNFLAGGED_AXIS_INTERVAL_DEG};
 use sherd::refine::uncertainty::BootstrapOptions;
 use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart, SynthSherd};
 
@@ -56,6 +56,7 @@ fn rim_sherd_measured_at_its_true_axis() {
         assert!(m.capacity_litres.is_none(), "a rim sherd has no capacity");
         let [zero, angle] = m.axis_angle_interval_deg.expect("an axis interval");
         assert!(zero == 0.0 && (0.0..5.0).contains(&angle), "axis interval {angle}");
+        assert_eq!(m.axis_uncertain, angle > MAX_UNFLAGGED_AXIS_INTERVAL_DEG, "axis interval {angle}");
     }
     assert!(checked >= 3, "only {checked} rim sherds generated");
 }
@@ -125,6 +126,18 @@ fn base_sherds_give_a_base_diameter() {
         }
     }
     assert!(measured >= 4, "only {measured} base sherds gave a base radius");
+}
+
+/// An axis interval wider than the threshold flags the axis as uncertain (here forced by
+/// a floor beyond it), with a note saying so.
+#[test]
+fn a_wide_axis_interval_flags_the_axis() {
+    let sherd = synthetic_sherd(0, &options(SherdPart::Rim));
+    let floor_deg = MAX_UNFLAGGED_AXIS_INTERVAL_DEG + 1.0;
+    let wide = MeasureOptions { bootstrap: BootstrapOptions { samples: 6, angle_floor_deg: floor_deg, ..Default::default() }, ..Default::default() };
+    let m = measure(&sherd.mesh, &sherd.truth.axis, &wide);
+    assert!(m.axis_angle_interval_deg.is_some_and(|i| i[1] >= floor_deg), "{:?}", m.axis_angle_interval_deg);
+    assert!(m.axis_uncertain && m.notes.iter().any(|n| n.contains("uncertain")), "{:?}", m.notes);
 }
 
 #[test]
