@@ -624,6 +624,73 @@ mod tests {
         assert!(quantile(&mut [], 0.5).is_nan());
     }
 
+    /// Every skin triangle cut by every plane, or every skin vertex tested against every
+    /// slab: what `horizontal_sections` must give, point for point, bit for bit.
+    fn sections_by_brute_force(surface: &PreparedSurface, frame: &CandidateFrame) -> Vec<(usize, [f64; 2], f64)> {
+        let count = surface.section_heights_mm.len();
+        let slot = |skin: Skin| if surface.surface == Surface::Both && skin == Skin::Outer { count } else { 0 };
+        let mut cuts = Vec::new();
+        if surface.has_faces() {
+            for (triangle, skin) in &surface.skin_triangles {
+                let corners = triangle.map(|v| frame.apply(&surface.points[v as usize]));
+                for (index, &h) in surface.section_heights_mm.iter().enumerate() {
+                    if let Some((a, b)) = cut_triangle(&corners, h) {
+                        let length = (a[0] - b[0]).hypot(a[1] - b[1]);
+                        if length > 0.0 {
+                            cuts.push((slot(*skin) + index, [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0], length));
+                        }
+                    }
+                }
+            }
+        } else {
+            for (p, skin) in surface.skin_points_in(frame) {
+                for (index, h) in surface.section_heights_mm.iter().enumerate() {
+                    if (p.z - h).abs() <= surface.slab_half_thickness_mm {
+                        cuts.push((slot(skin) + index, [p.x, p.y], 1.0));
+                    }
+                }
+            }
+        }
+        // Sections collect their points in triangle (vertex) order: a stable sort by
+        // section keeps that order within each.
+        cuts.sort_by_key(|&(index, _, _)| index);
+        cuts
+    }
+
+    fn flattened(sections: &[HorizontalSection]) -> Vec<(usize, [f64; 2], f64)> {
+        sections
+            .iter()
+            .enumerate()
+            .flat_map(|(index, s)| s.points.iter().zip(&s.weights).map(move |(p, w)| (index, *p, *w)))
+            .collect()
+    }
+
+    #[test]
+    fn sections_cut_only_the_planes_they_reach_yet_equal_every_plane_against_every_triangle() {
+        use crate::synth::{synthetic_sherd, SherdOptions, SherdPart};
+        let sherd = synthetic_sherd(7, &SherdOptions { target_faces: 6_000, ..SherdOptions::for_part(SherdPart::Rim) });
+        let mut cloud = sherd.mesh.clone();
+        cloud.triangles.clear();
+        let start = sherd.truth.axis;
+        let candidates = [[0.0, 0.0, 0.0, 0.0], [0.03, -0.05, 1.5, -2.0], [-0.12, 0.09, -4.0, 3.0]];
+        for (mesh, sections) in [(&sherd.mesh, None), (&cloud, Some(15)), (&sherd.mesh, Some(40))] {
+            for surface_choice in [Surface::Both, Surface::Outer] {
+                let surface = PreparedSurface::new(mesh, &start, surface_choice, sections).unwrap();
+                for parameters in &candidates {
+                    let frame = CandidateFrame::new(parameters);
+                    let found = flattened(&surface.horizontal_sections(&frame));
+                    let expected = sections_by_brute_force(&surface, &frame);
+                    assert!(!expected.is_empty());
+                    assert_eq!(found.len(), expected.len(), "faces: {}, {parameters:?}", surface.has_faces());
+                    for (a, b) in found.iter().zip(&expected) {
+                        let same = a.0 == b.0 && a.1.map(f64::to_bits) == b.1.map(f64::to_bits);
+                        assert!(same && a.2.to_bits() == b.2.to_bits(), "{a:?} vs {b:?}");
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn sector_angle_handles_wrap_around() {
         let angles = vec![3.0, -3.0, 3.1, -3.1];

@@ -26,15 +26,103 @@ pub enum Edge {
 
 /// Eq. 7 on a prepared fragment.
 pub struct TangentObjective {
-    /// Vertices of each vertical section (fixed in the start frame: the tilts searched
-    /// are a few degrees, far too little to move a vertex to another sector).
-    section_points: Vec<Vec<nalgebra::Point3<f64>>>,
+    /// Candidate extremes of each vertical section (fixed in the start frame: the tilts
+    /// searched are a few degrees, far too little to move a vertex to another sector).
+    sections: Vec<SectionCandidates>,
     /// Rim or base.
     pub edge: Edge,
     /// The tolerance epsilon, millimetres.
     pub tolerance_mm: f64,
-    /// Optional weight per vertical section, as a bootstrap draws them.
+    /// Optional weight per section, as a bootstrap draws them.
     pub section_weights: Option<Vec<f64>>,
+}
+
+/// The vertices of one vertical section that may be its extreme, ordered from the
+/// extreme in the start frame inwards (highest first for a rim, lowest first for a base),
+/// so that the search under a candidate frame stops once no later vertex can beat the
+/// best found (see [`SectionCandidates::extreme`]).
+struct SectionCandidates {
+    /// Start-frame points, extreme first.
+    points: Vec<Point>,
+    /// Each point's position in the section's vertex order (ties go as they did there).
+    order: Vec<usize>,
+    /// Mean `(x, y)` of the section's points, start frame.
+    centre_xy: [f64; 2],
+    /// `reach_mm[i]`: the largest horizontal distance to `centre_xy` among `points[i..]`.
+    reach_mm: Vec<f64>,
+    /// Rounding allowance of the bound, mm (far above the rounding of a coordinate).
+    slack_mm: f64,
+}
+
+impl SectionCandidates {
+    fn new(mut points: Vec<(usize, Point)>, edge: Edge) -> Self {
+        match edge {
+            Edge::Rim => points.sort_by(|a, b| b.1.z.total_cmp(&a.1.z)),
+            Edge::Base => points.sort_by(|a, b| a.1.z.total_cmp(&b.1.z)),
+        }
+        let count = points.len().max(1) as f64;
+        let centre_xy = [
+            points.iter().map(|(_, p)| p.x).sum::<f64>() / count,
+            points.iter().map(|(_, p)| p.y).sum::<f64>() / count,
+        ];
+        let mut reach_mm: Vec<f64> =
+            points.iter().map(|(_, p)| (p.x - centre_xy[0]).hypot(p.y - centre_xy[1])).collect();
+        for i in (0..reach_mm.len().saturating_sub(1)).rev() {
+            reach_mm[i] = reach_mm[i].max(reach_mm[i + 1]);
+        }
+        let magnitude = points.iter().map(|(_, p)| p.coords.amax()).fold(0.0, f64::max);
+        SectionCandidates {
+            order: points.iter().map(|&(i, _)| i).collect(),
+            points: points.into_iter().map(|(_, p)| p).collect(),
+            centre_xy,
+            reach_mm,
+            slack_mm: 1e-9 * (1.0 + magnitude),
+        }
+    }
+
+    /// The extreme point under `frame`, the same as the `max_by`/`min_by` over all
+    /// points in their section order (the last highest, the first lowest), found
+    /// without moving most of them: under a frame with direction `d` and offset `o`
+    /// (the height of the start origin), a point's height is `d . p + o`, at most
+    /// `d_z p_z + d_xy . c + |d_xy| reach + o` (at least, with `-|d_xy| reach`, for a
+    /// base); the points come extreme first, so the bound only shrinks along them.
+    fn extreme(&self, frame: &CandidateFrame, edge: Edge) -> Option<Point> {
+        let d = frame.direction();
+        let offset = frame.apply(&Point::origin()).z;
+        let tilt = d.x.hypot(d.y);
+        let centred = d.x * self.centre_xy[0] + d.y * self.centre_xy[1] + offset;
+        // Upside-down frames (never searched) would reverse the order: scan them all.
+        let bounded = d.z > 0.0;
+        let mut best: Option<(Point, usize)> = None;
+        for (i, (p, &order)) in self.points.iter().zip(&self.order).enumerate() {
+            if let (true, Some((found, _))) = (bounded, &best) {
+                let spread = tilt * self.reach_mm[i] + self.slack_mm;
+                let beyond = match edge {
+                    Edge::Rim => d.z * p.z + centred + spread < found.z,
+                    Edge::Base => d.z * p.z + centred - spread > found.z,
+                };
+                if beyond {
+                    break;
+                }
+            }
+            let moved = frame.apply(p);
+            let better = match &best {
+                None => true,
+                Some((found, found_order)) => match (edge, moved.z.total_cmp(&found.z)) {
+                    (_, std::cmp::Ordering::Equal) => match edge {
+                        Edge::Rim => order > *found_order,
+                        Edge::Base => order < *found_order,
+                    },
+                    (Edge::Rim, ordering) => ordering.is_gt(),
+                    (Edge::Base, ordering) => ordering.is_lt(),
+                },
+            };
+            if better {
+                best = Some((moved, order));
+            }
+        }
+        best.map(|(p, _)| p)
+    }
 }
 
 /// Vertices farther than this from the start frame's extreme cannot become the extreme
@@ -45,7 +133,7 @@ impl TangentObjective {
     /// Divides the fragment into `section_count` vertical sections about the start axis.
     pub fn new(surface: &PreparedSurface, edge: Edge, tolerance_mm: f64, section_count: usize) -> Self {
         let sections = vertical_sections(&surface.points, section_count.max(3));
-        let section_points = sections
+        let sections = sections
             .into_iter()
             .map(|indices| {
                 let points: Vec<_> = indices.iter().map(|&i| surface.points[i]).collect();
@@ -53,16 +141,17 @@ impl TangentObjective {
                     Edge::Rim => points.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max),
                     Edge::Base => points.iter().map(|p| p.z).fold(f64::INFINITY, f64::min),
                 };
-                points.into_iter().filter(|p| (p.z - extreme).abs() <= CANDIDATE_BAND_MM).collect()
+                points.into_iter().filter(|p| (p.z - extreme).abs() <= CANDIDATE_BAND_MM).enumerate().collect()
             })
             .filter(|points: &Vec<_>| !points.is_empty())
+            .map(|points| SectionCandidates::new(points, edge))
             .collect();
-        TangentObjective { section_points, edge, tolerance_mm, section_weights: None }
+        TangentObjective { sections, edge, tolerance_mm, section_weights: None }
     }
 
     /// Number of vertical sections.
     pub fn section_count(&self) -> usize {
-        self.section_points.len()
+        self.sections.len()
     }
 
     /// The extreme height of each vertical section under a candidate frame.
@@ -72,16 +161,9 @@ impl TangentObjective {
 
     /// The extreme point of each vertical section, in the candidate frame.
     pub fn extreme_points(&self, frame: &CandidateFrame) -> Vec<Point> {
-        self.section_points
+        self.sections
             .iter()
-            .map(|points| {
-                let moved = points.iter().map(|p| frame.apply(p));
-                match self.edge {
-                    Edge::Rim => moved.max_by(|a, b| a.z.total_cmp(&b.z)),
-                    Edge::Base => moved.min_by(|a, b| a.z.total_cmp(&b.z)),
-                }
-                .expect("sections are not empty")
-            })
+            .map(|section| section.extreme(frame, self.edge).expect("sections are not empty"))
             .collect()
     }
 
@@ -251,4 +333,62 @@ pub fn edge_evidence_anchored(
     let mut deviations = level.clone();
     let spread = if deviations.is_empty() { f64::INFINITY } else { super::sections::quantile(&mut deviations, 0.5) };
     EdgeEvidence { edge, level_fraction: level.len() as f64 / extremes.len() as f64, spread_mm: spread }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::refine::sections::Surface;
+    use crate::synth::{synthetic_sherd, SherdOptions, SherdPart};
+
+    #[test]
+    fn bounded_extreme_search_finds_the_same_points_as_moving_every_candidate() {
+        let options = SherdOptions { target_faces: 8_000, ..SherdOptions::for_part(SherdPart::RimToBase) };
+        let sherd = synthetic_sherd(11, &options);
+        let surface = PreparedSurface::new(&sherd.mesh, &sherd.truth.axis, Surface::Both, None).unwrap();
+        for edge in [Edge::Rim, Edge::Base] {
+            let objective = TangentObjective::new(&surface, edge, 3.0, 24);
+            let sections = vertical_sections(&surface.points, 24);
+            let candidates = [[0.0, 0.0, 0.0, 0.0], [0.02, -0.04, 1.0, 2.0], [-0.17, 0.15, -5.0, 0.5], [0.3, 0.0, 0.0, 0.0]];
+            for parameters in candidates {
+                let frame = CandidateFrame::new(&parameters);
+                let found = objective.extreme_points(&frame);
+                // The plain search: every candidate moved, the last highest or first lowest.
+                let expected: Vec<Point> = sections
+                    .iter()
+                    .filter(|indices| !indices.is_empty())
+                    .map(|indices| {
+                        let points: Vec<Point> = indices.iter().map(|&i| surface.points[i]).collect();
+                        let extreme = match edge {
+                            Edge::Rim => points.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max),
+                            Edge::Base => points.iter().map(|p| p.z).fold(f64::INFINITY, f64::min),
+                        };
+                        let near = points.iter().filter(|p| (p.z - extreme).abs() <= CANDIDATE_BAND_MM);
+                        let moved = near.map(|p| frame.apply(p));
+                        match edge {
+                            Edge::Rim => moved.max_by(|a, b| a.z.total_cmp(&b.z)),
+                            Edge::Base => moved.min_by(|a, b| a.z.total_cmp(&b.z)),
+                        }
+                        .unwrap()
+                    })
+                    .collect();
+                assert_eq!(found.len(), expected.len());
+                for (a, b) in found.iter().zip(&expected) {
+                    assert_eq!(a.coords.map(f64::to_bits), b.coords.map(f64::to_bits), "{edge:?} {parameters:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn ties_go_to_the_last_highest_and_the_first_lowest_as_in_section_order() {
+        // Three points at one height: under the start frame the plain max_by keeps the
+        // last, min_by the first.
+        let points: Vec<(usize, Point)> =
+            [1.0, 2.0, 3.0].iter().enumerate().map(|(i, &x)| (i, Point::new(x, 0.0, 5.0))).collect();
+        let frame = CandidateFrame::new(&[0.0; 4]);
+        let rim = SectionCandidates::new(points.clone(), Edge::Rim).extreme(&frame, Edge::Rim).unwrap();
+        let base = SectionCandidates::new(points, Edge::Base).extreme(&frame, Edge::Base).unwrap();
+        assert_eq!((rim.x, base.x), (3.0, 1.0));
+    }
 }
