@@ -14,7 +14,7 @@ root=$(pwd)
 step() { printf '\n==> %s\n' "$*"; }
 
 step "system packages"
-packages=(ghostscript valgrind libgl1 libglu1-mesa pkg-config blender python3-numpy python3-venv)
+packages=(ghostscript libgl1 libglu1-mesa pkg-config blender python3-numpy python3-venv)
 missing=()
 for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then
@@ -46,7 +46,7 @@ step "Rust tests"
 # FUZZING.md) and the SIGKILLed batch (tests/batch_kill.rs).
 cargo test --release --all-targets
 
-step "C and C++ consumers (under valgrind, or AddressSanitizer without it), the C ABI property test among them"
+step "C and C++ consumers under AddressSanitizer, LeakSanitizer and UBSan (gcc's runtimes come with gcc; SHERD_C_CHECKER=valgrind for valgrind), the C ABI property test among them"
 if [ -f tests/c/run.sh ]; then bash tests/c/run.sh; fi
 
 step "Python tests"

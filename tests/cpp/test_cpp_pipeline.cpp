@@ -1,7 +1,7 @@
 // The whole pipeline through sherd.hpp on a synthetic sherd, from its arrays and from a
 // file: repair, decimate, orient (automatic, three points), refine with each criterion,
 // measure, draw in each format, export, reconstruct, map the regularity, and the
-// pipeline in one call. Built and run under valgrind by tests/c/run.sh.
+// pipeline in one call. Built and run under ASan, LSan and UBSan (or valgrind) by tests/c/run.sh.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

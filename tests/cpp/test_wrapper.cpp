@@ -1,5 +1,5 @@
 // The C++17 wrapper: RAII ownership, deep copies, exceptions carrying the status and
-// the library's message. Built and run under valgrind by tests/c/run.sh.
+// the library's message. Built and run under ASan, LSan and UBSan (or valgrind) by tests/c/run.sh.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
