@@ -80,6 +80,12 @@ enum SherdStatus
    * where; please report it. The handles passed to the call remain valid to free.
    */
   SHERD_STATUS_PANIC = 10,
+  /**
+   * The axis line is found but not which way it points (base to rim): the sense cues
+   * are weak or disagree. Outputs are still written (the axis, refined and measured
+   * by the pipeline); the message gives the reason. Check the sense, or ask the user.
+   */
+  SHERD_STATUS_SENSE_UNCERTAIN = 11,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -562,8 +568,8 @@ typedef struct {
    */
   size_t size;
   /**
-   * True when the data determine the axis; false with
-   * `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION`.
+   * True when the data determine the axis and its sense; false with
+   * `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` and `SHERD_STATUS_SENSE_UNCERTAIN`.
    */
   bool oriented;
   /**
@@ -1087,6 +1093,8 @@ SherdStatus sherd_mesh_oriented_transform(const SherdMesh *mesh,
  * its axis (a flat base piece, a near-spherical piece, one too small): the axis is
  * still written, as a best guess not to be trusted, and the message gives the reason;
  * ask the user for three points (`sherd_orient_from_three_points`).
+ * Returns `SHERD_STATUS_SENSE_UNCERTAIN` when the axis line is determined but not which
+ * way is up (base to rim): the axis is written, its sense a guess.
  *
  * # Safety
  * `mesh` must be a live handle; `options` NULL or live; the out-pointers writable or,
@@ -1439,7 +1447,8 @@ SherdStatus sherd_draw_options_set_title(SherdDrawOptions *options, const char *
  * `millimetres_per_unit` is 1 for scans in millimetres.
  *
  * Returns `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` (record written, no axis) when the
- * sherd does not determine its axis. When the scan cannot be read or processed the
+ * sherd does not determine its axis; `SHERD_STATUS_SENSE_UNCERTAIN` (record and axis
+ * written, refined and measured) when it determines the axis line but not which way is up. When the scan cannot be read or processed the
  * record (status `"error"`) is still written, no axis, and the status says why:
  * `SHERD_STATUS_IO`, `SHERD_STATUS_PARSE`, `SHERD_STATUS_NOT_CONVERGED`...
  *

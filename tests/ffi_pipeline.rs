@@ -72,3 +72,11 @@ fn four_threads_give_the_results_of_one() {
         }
     }
 }
+
+#[test]
+fn sense_uncertain_is_status_eleven_with_its_name() {
+    assert_eq!(SherdStatus::SenseUncertain as u32, 11);
+    let name = unsafe { CStr::from_ptr(sherd_status_name(11)) };
+    assert_eq!(name.to_str().unwrap(), "SHERD_STATUS_SENSE_UNCERTAIN");
+    assert_eq!(SherdStatus::ALL.last(), Some(&SherdStatus::SenseUncertain));
+}

@@ -50,3 +50,25 @@ fn refinement_and_measurements_use_the_full_mesh_and_the_bootstrap_the_copy() {
     let (interval, interval_full) = (m.axis_angle_interval_deg.unwrap(), m_full.axis_angle_interval_deg.unwrap());
     assert!(interval[1] > 0.0 && interval_full[1] > 0.0, "{interval:?} {interval_full:?}");
 }
+
+/// A sherd whose axis line is found but not which way is up (synthetic_sherd 30, a body
+/// piece): the record says `sense_uncertain` with the reason, and still carries the axis
+/// and the measurements; the drawing is not made.
+#[test]
+fn a_sense_uncertain_sherd_is_refined_and_measured_but_not_drawn() {
+    let sherd = synthetic_sherd(30, &SherdOptions::default());
+    let analysis = analyse(sherd.mesh.clone(), &options()).unwrap();
+    assert!(
+        matches!(analysis.orientation.verdict, sherd::orient::Verdict::SenseUncertain { .. }),
+        "{:?}",
+        analysis.orientation.verdict
+    );
+    assert!(!analysis.is_oriented());
+    assert!(analysis.refinement.is_some() && analysis.measurements.is_some());
+    let line_error = analysis.axis().line_angle_to_deg(&sherd.truth.axis);
+    assert!(line_error < 5.0, "the axis line is {line_error} deg off");
+    let record = sherd::pipeline::SherdRecord::from_analysis("s30".into(), &analysis);
+    assert_eq!(record.status, sherd::pipeline::STATUS_SENSE_UNCERTAIN);
+    assert!(record.reason.as_deref().is_some_and(|r| r.contains("which way is up")), "{:?}", record.reason);
+    assert!(record.axis.is_some() && record.sector_angle_deg.is_some(), "{record:?}");
+}

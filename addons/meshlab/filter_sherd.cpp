@@ -121,6 +121,12 @@ SherdAxis layerAxis(const LayerMesh& layer, int source)
 	SherdStatus status = sherd_analyse(layer.mesh.get(), nullptr, 1.0, &axis, nullptr);
 	if (status == SHERD_STATUS_NEEDS_MANUAL_ORIENTATION)
 		throw cannotOrient(QString::fromUtf8(sherd_last_error_message()));
+	// The axis line is good, only which way is up is a guess: the measurements hold, a
+	// drawing or the layer's frame may be upside down.
+	if (status == SHERD_STATUS_SENSE_UNCERTAIN) {
+		qWarning("Sherd: the sense of the axis (base to rim) is uncertain: %s", sherd_last_error_message());
+		return axis;
+	}
 	sherd::check(status);
 	return axis;
 }

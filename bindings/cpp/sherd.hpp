@@ -2,8 +2,8 @@
 //
 // Handles become RAII objects (copyable by deep copy, cheaply movable); every status
 // other than SHERD_STATUS_OK becomes a sherd::Error carrying the status and the
-// library's message. NEEDS_MANUAL_ORIENTATION is not an exception where a result still
-// comes back (orientation): the result says so.
+// library's message. NEEDS_MANUAL_ORIENTATION and SENSE_UNCERTAIN are not exceptions where
+// a result still comes back (orientation): the result says so.
 //
 //   sherd::Mesh mesh = sherd::Mesh::from_arrays(positions, triangles);
 //   std::array<double, 16> m = mesh.oriented_transform(axis);
@@ -307,7 +307,8 @@ inline Mesh decimate(const Mesh& mesh, std::size_t target_faces) {
 }
 
 /// The outcome of an orientation: when `oriented` is false the axis is a guess and
-/// `reason` says why (NEEDS_MANUAL_ORIENTATION is an answer, not an exception).
+/// `reason` says why (NEEDS_MANUAL_ORIENTATION and SENSE_UNCERTAIN are answers, not
+/// exceptions; with SENSE_UNCERTAIN the axis line is good, its sense a guess).
 struct Orientation {
     SherdAxis axis;
     SherdOrientReport report;
@@ -319,7 +320,8 @@ struct Orientation {
 namespace detail {
 inline Orientation finish_orientation(SherdStatus status, const SherdAxis& axis, const SherdOrientReport& report,
                                       SherdBuffer* json) {
-    if (status != SHERD_STATUS_OK && status != SHERD_STATUS_NEEDS_MANUAL_ORIENTATION) {
+    if (status != SHERD_STATUS_OK && status != SHERD_STATUS_NEEDS_MANUAL_ORIENTATION &&
+        status != SHERD_STATUS_SENSE_UNCERTAIN) {
         sherd_buffer_free(json);
         throw Error(status, sherd_last_error_message());
     }
@@ -489,8 +491,9 @@ inline Regularity regularity(const Mesh& mesh, const SherdAxis& axis,
 }
 
 /// What the whole pipeline found (`sherd orient --json`'s record): `status` is
-/// SHERD_STATUS_OK or SHERD_STATUS_NEEDS_MANUAL_ORIENTATION (then `axis` is unset and
-/// `reason` says why); errors throw.
+/// SHERD_STATUS_OK, SHERD_STATUS_SENSE_UNCERTAIN (axis set, its sense a guess, `reason`
+/// says why) or SHERD_STATUS_NEEDS_MANUAL_ORIENTATION (then `axis` is unset and `reason`
+/// says why); errors throw.
 struct Analysis {
     SherdStatus status;
     SherdAxis axis;
@@ -504,7 +507,8 @@ Analysis finish_analysis(Call call) {
     Analysis result{SHERD_STATUS_OK, make_axis({0, 0, 0}, {0, 0, 0}), {}, {}};
     SherdBuffer* json = nullptr;
     result.status = call(&result.axis, &json);
-    if (result.status != SHERD_STATUS_OK && result.status != SHERD_STATUS_NEEDS_MANUAL_ORIENTATION) {
+    if (result.status != SHERD_STATUS_OK && result.status != SHERD_STATUS_NEEDS_MANUAL_ORIENTATION &&
+        result.status != SHERD_STATUS_SENSE_UNCERTAIN) {
         const std::string message = sherd_last_error_message();
         if (json) sherd_buffer_free(json);
         throw Error(result.status, message);

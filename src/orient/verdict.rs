@@ -200,7 +200,8 @@ pub fn judge(
             ));
         }
     }
-    if !(report.region_turn_deg <= limits.max_region_turn_deg) {
+    // NaN (a refit that failed to give a number) is flagged too.
+    if report.region_turn_deg.is_nan() || report.region_turn_deg > limits.max_region_turn_deg {
         return flag(format!(
             "the axis rests on one region of the sherd: leaving it out turns the axis by {:.1} deg (at most {:.1} deg accepted)",
             report.region_turn_deg, limits.max_region_turn_deg

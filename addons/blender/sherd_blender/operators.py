@@ -152,7 +152,11 @@ class SherdOperator:
 
 def _finish_orientation(operator, obj, orientation, source):
     if not orientation.oriented:
-        operator.notify({'WARNING'}, f"needs manual orientation: {orientation.reason}")
+        # The orientation gives a reason both when the line is refused and when only its
+        # sense (base to rim) is uncertain; the report's verdict tells them apart.
+        uncertain_sense = "which way is up" in orientation.reason
+        what = "sense uncertain (check which way is up)" if uncertain_sense else "needs manual orientation"
+        operator.notify({'WARNING'}, f"{what}: {orientation.reason}")
         return {'CANCELLED'}
     store_axis(obj, orientation.axis, source)
     obj["sherd_angle_uncertainty_deg"] = float(orientation.angle_uncertainty_deg)

@@ -12,6 +12,7 @@ from .errors import (
     DegenerateGeometryError,
     InvalidArgumentError,
     NeedsManualOrientationError,
+    SenseUncertainError,
     NotAvailableError,
     NotConvergedError,
     NullPointerError,
@@ -40,7 +41,7 @@ __version__ = lib.sherd_version().decode()
 __all__ = [
     "Analysis", "analyse", "process_file", "Regularity", "reconstruct", "regularity",
     "Attribute", "Axis", "Drawing", "BufferTooSmallError", "DegenerateGeometryError", "InvalidArgumentError", "Mesh",
-    "NeedsManualOrientationError", "NotAvailableError", "NotConvergedError", "NullPointerError", "PanicError",
+    "NeedsManualOrientationError", "SenseUncertainError", "NotAvailableError", "NotConvergedError", "NullPointerError", "PanicError",
     "ParseError", "SherdError", "SherdIOError", "Status", "export_oriented_ply", "export_profile_csv",
     "export_reconstruction_ply", "Measurements", "measure", "Refinement", "refine",
     "last_error_message", "most_informative_angle", "orient_automatic", "orient_from_three_points", "Orientation",

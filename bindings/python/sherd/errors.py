@@ -19,6 +19,7 @@ class Status(enum.IntEnum):
     NOT_CONVERGED = 8
     NEEDS_MANUAL_ORIENTATION = 9
     PANIC = 10
+    SENSE_UNCERTAIN = 11
 
 
 class SherdError(Exception):
@@ -69,6 +70,10 @@ class NeedsManualOrientationError(SherdError):
     """The data do not determine an axis: give three points."""
 
 
+class SenseUncertainError(SherdError):
+    """The axis line is found but not which way is up (base to rim)."""
+
+
 class PanicError(SherdError):
     """A bug inside libsherd, caught at the boundary; please report it."""
 
@@ -84,6 +89,7 @@ _EXCEPTIONS = {
     Status.NOT_CONVERGED: NotConvergedError,
     Status.NEEDS_MANUAL_ORIENTATION: NeedsManualOrientationError,
     Status.PANIC: PanicError,
+    Status.SENSE_UNCERTAIN: SenseUncertainError,
 }
 
 

@@ -48,7 +48,7 @@ class Orientation:
 
 def _orientation(status, axis, summary, report):
     reason = ""
-    if status == Status.NEEDS_MANUAL_ORIENTATION:
+    if status in (Status.NEEDS_MANUAL_ORIENTATION, Status.SENSE_UNCERTAIN):
         reason = last_error_message()
     elif status != Status.OK:
         take_buffer(report)
@@ -206,7 +206,9 @@ def measure(mesh, axis, *, bootstrap_samples=None, bootstrap_seed=None, confiden
 class Analysis:
     """What the whole pipeline found for one scan: ``record`` is the JSON object
     ``sherd orient --json`` prints (as a dict), ``axis`` the final axis in the scan's frame
-    and units (None when ``oriented`` is False; ``reason`` then says why)."""
+    and units (None when the axis line is not found; ``reason`` then says why). ``oriented``
+    is False also when only the sense is uncertain (record status ``sense_uncertain``): the
+    axis is then given, its sense (base to rim) a guess."""
 
     axis: Axis
     oriented: bool
@@ -219,11 +221,12 @@ def _analysis(call, refine_options, millimetres_per_unit):
     axis.size = ctypes.sizeof(c.SherdAxis)
     with _refine_options(**(refine_options or {})) as options:
         status = call(options, float(millimetres_per_unit), ctypes.byref(axis), ctypes.byref(record))
-    if status not in (Status.OK, Status.NEEDS_MANUAL_ORIENTATION):
+    if status not in (Status.OK, Status.NEEDS_MANUAL_ORIENTATION, Status.SENSE_UNCERTAIN):
         take_buffer(record)
         raise error_for(status)
     oriented = status == Status.OK
-    return Analysis(Axis.from_c(axis) if oriented else None, oriented,
+    has_line = status in (Status.OK, Status.SENSE_UNCERTAIN)
+    return Analysis(Axis.from_c(axis) if has_line else None, oriented,
                     "" if oriented else last_error_message(), take_json(record))
 
 
