@@ -4,7 +4,7 @@
 # batch throughput estimated from CPU time (the machine is shared: wall time depends on
 # the load, printed beside). Prints Markdown tables for BENCHMARKS.md.
 #
-#   bash benches/pipeline.sh            # 500k-face scan + batch of 100 sherds of 200k faces
+#   bash benches/pipeline.sh            # 500k-face rim scan (seed 200: oriented) + batch of 100 sherds of 200k faces
 #   SHERD_BATCH_COUNT=20 bash benches/pipeline.sh   # a shorter batch
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,7 +26,7 @@ measure() { # label, command...: prints "| label | CPU s | wall s | peak MiB | l
   printf '| %s | %.2f | %.2f | %.0f | %s |\n' "$label" "$cpu" "$wall" "$((kib / 1024))" "$(cut -d' ' -f1-3 /proc/loadavg)"
 }
 
-"$sherd" synth -o "$work/big" --count 1 --seed 3 --faces 500000 --part rim >/dev/null
+"$sherd" synth -o "$work/big" --count 1 --seed 200 --faces 500000 --part rim >/dev/null
 big=$(ls "$work"/big/*.ply | head -n 1)
 echo "| step (500k-face scan: $(basename "$big")) | CPU s | wall s | peak MiB | load (1, 5, 15 min) |"
 echo "|---|---|---|---|---|"
