@@ -36,10 +36,10 @@ measure "sherd orient --json (read, repair, orient, refine, measure)" "$sherd" o
 if grep -q '"status": "ok"' "$work/axis.json"; then
   measure "sherd draw --axis (linear)" "$sherd" draw "$big" --axis "$work/axis.json" -o "$work/big.svg"
   measure "sherd draw --axis (all styles, PNG 300 dpi)" "$sherd" draw "$big" --axis "$work/axis.json" --style linear,colour,light,occlusion,stipple,regularity -o "$work/big.png"
-else # a sherd without an axis can only be drawn from the whole pipeline below
+  measure "sherd draw (whole pipeline, linear, SVG)" "$sherd" draw "$big" -o "$work/big2.svg"
+else # a sherd without an axis cannot be drawn
   echo "| sherd draw --axis: skipped, the scan's status is $(grep -o '"status": "[a-z_]*"' "$work/axis.json") | | | | |"
 fi
-measure "sherd draw (whole pipeline, linear, SVG)" "$sherd" draw "$big" -o "$work/big2.svg"
 
 echo
 "$sherd" synth -o "$work/batch" --count "$count" --seed 100 --faces 200000 >/dev/null
