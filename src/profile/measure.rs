@@ -114,8 +114,13 @@ const EDGE_BAND_MM: f64 = 1.0;
 fn edge_radius(oriented: &[Point], outer_skin: &[bool], edge: Edge) -> Option<f64> {
     let sections = vertical_sections(oriented, EDGE_SECTIONS);
     let standing = oriented.iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
+    // A base sherd holding the floor's centre keeps the wall on some sides only: the
+    // sections with floor alone would give their break's radius (on the synthetic corpus
+    // 35-90 mm short in diameter), so only sections rising into the wall count.
+    let wall_from = if edge == Edge::Base { wall_height(oriented) } else { f64::NEG_INFINITY };
     let mut radii: Vec<f64> = sections
         .iter()
+        .filter(|indices| indices.iter().any(|&i| oriented[i].z > wall_from))
         .filter_map(|indices| {
             let radius = |p: &Point| p.x.hypot(p.y);
             match edge {
@@ -156,10 +161,17 @@ fn edge_radius(oriented: &[Point], outer_skin: &[bool], edge: Edge) -> Option<f6
 /// 15-40% short of it), so it gives no base diameter. Any vertex counts, not only the
 /// outer skin's: the low flaring wall of a bowl has no skin the skin test recognises.
 fn reaches_base_edge(oriented: &[Point]) -> bool {
+    let wall_from = wall_height(oriented);
+    oriented.iter().any(|p| p.z > wall_from)
+}
+
+/// The height above which a vertex belongs to the wall, not the floor: [`EDGE_BAND_MM`]
+/// above the floor's inner face (the highest point at the innermost radius).
+fn wall_height(oriented: &[Point]) -> f64 {
     let radius = |p: &Point| p.x.hypot(p.y);
     let innermost = oriented.iter().map(radius).fold(f64::INFINITY, f64::min);
     let floor_top = oriented.iter().filter(|p| radius(p) <= innermost + EDGE_BAND_MM).map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
-    oriented.iter().any(|p| p.z > floor_top + EDGE_BAND_MM)
+    floor_top + EDGE_BAND_MM
 }
 
 /// The crossings of the horizontal line at `z` with closed outlines, sorted by radius.
