@@ -169,3 +169,15 @@ def test_drawing_in_each_format(tmp_path, oriented_rim):
         sherd.Drawing(mesh, axis, style="watercolour")
     with pytest.raises(sherd.InvalidArgumentError, match="dpi"):
         sherd.Drawing(mesh, axis, style="linear", dpi=1)
+
+
+def test_a_sense_uncertain_sherd_says_so_and_keeps_its_axis_line():
+    # synthetic_sherd(30): its axis line is found, which way is up is not (as in
+    # tests/pipeline_working_copy.rs); the status, not the reason's wording, tells a host.
+    mesh, truth, _ = sherd.synthetic_sherd(30)
+    orientation = sherd.orient_automatic(mesh)
+    assert not orientation.oriented and orientation.sense_uncertain
+    assert "which way is up" in orientation.reason
+    assert angle_deg(orientation.axis, truth, signed=False) < 5.0
+    refused = sherd.orient_automatic(sherd.synthetic_sherd(1, "flat_base", target_faces=6000)[0])
+    assert not refused.sense_uncertain

@@ -152,10 +152,7 @@ class SherdOperator:
 
 def _finish_orientation(operator, obj, orientation, source):
     if not orientation.oriented:
-        # The orientation gives a reason both when the line is refused and when only its
-        # sense (base to rim) is uncertain; the report's verdict tells them apart.
-        uncertain_sense = "which way is up" in orientation.reason
-        what = "sense uncertain (check which way is up)" if uncertain_sense else "needs manual orientation"
+        what = "sense uncertain (check which way is up)" if orientation.sense_uncertain else "needs manual orientation"
         operator.notify({'WARNING'}, f"{what}: {orientation.reason}")
         return {'CANCELLED'}
     store_axis(obj, orientation.axis, source)

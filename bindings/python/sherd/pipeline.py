@@ -35,7 +35,9 @@ def synthetic_sherd(seed, kind="random", target_faces=0, noise_mm=0.02):
 @dataclass
 class Orientation:
     """The result of an orientation. ``oriented`` is False when the data do not determine
-    the axis: ``axis`` is then only a guess and ``reason`` says why (ask for three points)."""
+    the axis: ``axis`` is then only a guess and ``reason`` says why (ask for three points).
+    ``sense_uncertain`` is True when the axis line is found but not which way is up (status
+    ``SENSE_UNCERTAIN``): ``oriented`` is then False too, and the axis's line holds."""
 
     axis: Axis
     oriented: bool
@@ -44,6 +46,7 @@ class Orientation:
     position_uncertainty_mm: float
     kept_vertex_count: int
     report: dict = field(default_factory=dict)
+    sense_uncertain: bool = False
 
 
 def _orientation(status, axis, summary, report):
@@ -54,7 +57,8 @@ def _orientation(status, axis, summary, report):
         take_buffer(report)
         raise error_for(status)
     return Orientation(Axis.from_c(axis), bool(summary.oriented), reason, summary.angle_uncertainty_deg,
-                       summary.position_uncertainty_mm, summary.kept_vertex_count, take_json(report))
+                       summary.position_uncertainty_mm, summary.kept_vertex_count, take_json(report),
+                       status == Status.SENSE_UNCERTAIN)
 
 
 def _outputs():
