@@ -179,5 +179,9 @@ def test_a_sense_uncertain_sherd_says_so_and_keeps_its_axis_line():
     assert not orientation.oriented and orientation.sense_uncertain
     assert "which way is up" in orientation.reason
     assert angle_deg(orientation.axis, truth, signed=False) < 5.0
+    analysis = sherd.analyse(mesh)
+    assert analysis.sense_uncertain and not analysis.oriented
+    assert analysis.record["status"] == "sense_uncertain" and analysis.axis is not None
     refused = sherd.orient_automatic(sherd.synthetic_sherd(1, "flat_base", target_faces=6000)[0])
     assert not refused.sense_uncertain
+    assert not sherd.analyse(sherd.synthetic_sherd(1, "flat_base", target_faces=6000)[0]).sense_uncertain

@@ -211,13 +211,15 @@ class Analysis:
     """What the whole pipeline found for one scan: ``record`` is the JSON object
     ``sherd orient --json`` prints (as a dict), ``axis`` the final axis in the scan's frame
     and units (None when the axis line is not found; ``reason`` then says why). ``oriented``
-    is False also when only the sense is uncertain (record status ``sense_uncertain``): the
-    axis is then given, its sense (base to rim) a guess."""
+    is False also when only the sense is uncertain: ``sense_uncertain`` is then True (record
+    status ``sense_uncertain``) and the axis is given, its line found, its sense (base to
+    rim) a guess."""
 
     axis: Axis
     oriented: bool
     reason: str
     record: dict
+    sense_uncertain: bool = False
 
 
 def _analysis(call, refine_options, millimetres_per_unit):
@@ -231,7 +233,8 @@ def _analysis(call, refine_options, millimetres_per_unit):
     oriented = status == Status.OK
     has_line = status in (Status.OK, Status.SENSE_UNCERTAIN)
     return Analysis(Axis.from_c(axis) if has_line else None, oriented,
-                    "" if oriented else last_error_message(), take_json(record))
+                    "" if oriented else last_error_message(), take_json(record),
+                    status == Status.SENSE_UNCERTAIN)
 
 
 def process_file(path, *, refine_options=None, millimetres_per_unit=1.0):
