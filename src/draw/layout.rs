@@ -12,10 +12,10 @@ use rayon::prelude::*;
 use crate::draw::model::{helvetica_width_mm, Anchor, Dots, Drawing, Element, Group, Image, Path, Rgb, Segment, Stroke, Text};
 use crate::draw::font::text_width_mm;
 use crate::draw::stipple::stipple_dots;
-use crate::draw::view::{crease_edges, outline_loops, render_view, visible_creases, Shading, Surface, View};
+use crate::draw::view::{crease_edges, outline_loops, render_view, visible_creases, OcclusionField, Shading, Surface, View};
 use crate::draw::{DrawOptions, Placement, RegularityKind, SectionFill};
 use crate::mesh::normals::{compute_vertex_normals, NormalWeighting};
-use crate::mesh::occlusion::ambient_occlusion;
+use crate::mesh::occlusion::near_and_far_light;
 use crate::mesh::Mesh;
 use crate::orient::Axis;
 use crate::profile::measure::{measure, MeasureOptions, Measurements};
@@ -305,12 +305,11 @@ fn draw_views(
     let ((occlusion, regularity), creases) = rayon::join(
         || {
             rayon::join(
-                || -> Result<Option<Vec<f32>>> {
+                || -> Result<Option<OcclusionField>> {
                     if !(style.occlusion || style.stipple) {
                         return Ok(None);
                     }
-                    let raw = ambient_occlusion(mesh, &options.occlusion)?;
-                    Ok(Some(stretch(&smooth_over_neighbours(mesh, raw, 4))))
+                    occlusion_field(mesh, options).map(Some)
                 },
                 || -> Result<Option<(Vec<f32>, ColorMap)>> {
                     if !style.regularity {
@@ -332,7 +331,7 @@ fn draw_views(
         mesh,
         oriented,
         normals,
-        occlusion: occlusion.as_deref(),
+        occlusion: occlusion.as_ref(),
         regularity: regularity.as_ref().map(|(v, m)| (v.as_slice(), m)),
     };
     let shading = Shading {
@@ -360,22 +359,32 @@ fn draw_views(
     Ok(Views { exterior, interior, regularity_map: regularity.map(|(_, map)| map) })
 }
 
-/// Ambient light stretched over the fragment's 2nd..98th percentiles: sherds are mostly
-/// open, and unstretched occlusion would be invisible.
-fn stretch(values: &[f32]) -> Vec<f32> {
-    let mut sorted: Vec<f32> = values.iter().copied().filter(|v| v.is_finite()).collect();
+/// Share of the mesh's bounding-box diagonal within which an occluder's shadow stays sharp
+/// in a drawing (grooves, rills, the crease of a carination); farther shadows are smoothed
+/// over the view (see [`near_and_far_light`]).
+const NEAR_OCCLUSION_REACH_SHARE: f64 = 0.06;
+
+/// The ambient light a view shades with: the near light per vertex, the rest as a factor
+/// the view smooths, and the stretch of their product over the fragment's 2nd..98th
+/// percentiles (sherds are mostly open: unstretched occlusion would be invisible).
+fn occlusion_field(mesh: &Mesh, options: &DrawOptions) -> Result<OcclusionField> {
+    let (lo, hi) = mesh.bounding_box().ok_or_else(|| Error::DegenerateGeometry("no vertex to shade".into()))?;
+    let reach_mm = ((hi - lo).norm() * NEAR_OCCLUSION_REACH_SHARE).max(1e-6);
+    let light = near_and_far_light(mesh, &options.occlusion, reach_mm)?;
+    let near = smooth_over_neighbours(mesh, light.near, 4);
+    let full = smooth_over_neighbours(mesh, light.full, 4);
+    let far_factor: Vec<f32> = full.iter().zip(&near).map(|(&f, &n)| if n > 0.0 { (f / n).min(1.0) } else { 1.0 }).collect();
+    let mut sorted: Vec<f32> = full.iter().copied().filter(|v| v.is_finite()).collect();
     sorted.sort_by(f32::total_cmp);
-    if sorted.is_empty() {
-        return values.to_vec();
-    }
-    let (lo, hi) = (sorted[sorted.len() * 2 / 100], sorted[(sorted.len() * 98 / 100).min(sorted.len() - 1)]);
-    let span = (hi - lo).max(1e-6);
-    values.iter().map(|&v| ((v - lo) / span).clamp(0.0, 1.0)).collect()
+    let (low, high) = match sorted.len() {
+        0 => (0.0, 1.0),
+        n => (sorted[n * 2 / 100], sorted[(n * 98 / 100).min(n - 1)]),
+    };
+    Ok(OcclusionField { near, far_factor, low, span: (high - low).max(1e-6) })
 }
 
-/// Averages each vertex's value with its neighbours' `passes` times. With a few dozen
-/// directions every direction's shadow edge shows as a sharp step, and together they make
-/// star patterns on concave surfaces; this blurs them over a few vertices.
+/// Averages each vertex's value with its neighbours' `passes` times: the shadow edges of
+/// near occluders soften over a few vertices.
 fn smooth_over_neighbours(mesh: &Mesh, mut values: Vec<f32>, passes: usize) -> Vec<f32> {
     for _ in 0..passes {
         let mut sum = values.clone();

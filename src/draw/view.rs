@@ -16,11 +16,30 @@ pub(crate) struct Surface<'a> {
     pub mesh: &'a Mesh,
     pub oriented: &'a [Point],
     pub normals: &'a [Vector],
-    /// Ambient light per vertex, stretched to [0, 1] over the fragment.
-    pub occlusion: Option<&'a [f32]>,
+    /// Ambient light.
+    pub occlusion: Option<&'a OcclusionField>,
     /// Values and their colour map.
     pub regularity: Option<(&'a [f32], &'a ColorMap)>,
 }
+
+/// Ambient light per vertex in two parts (see [`crate::mesh::occlusion::near_and_far_light`]):
+/// a pixel's light is `near` times `far_factor` smoothed over the view, stretched by
+/// `(light - low) / span` to [0, 1].
+pub(crate) struct OcclusionField {
+    /// Light left by the near occluders, per vertex.
+    pub near: Vec<f32>,
+    /// What the far occluders take away, as a factor in [0, 1] per vertex.
+    pub far_factor: Vec<f32>,
+    /// Light shown black.
+    pub low: f32,
+    /// Light range from black to white.
+    pub span: f32,
+}
+
+/// Width of the far occlusion's smoothing, as a share of the view's larger side: wide
+/// enough to melt the one-direction shadow edges of a few dozen directions into the
+/// gradient many directions give.
+const FAR_OCCLUSION_SMOOTHING_SHARE: f64 = 0.12;
 
 /// What the view's pixels show.
 #[derive(Clone, Copy, Debug, Default)]
@@ -65,6 +84,10 @@ pub(crate) fn render_view(surface: &Surface, rotation_rad: f64, pixel_mm: f64, s
     let mut darkness = vec![0f32; width * height];
     let light = Vector::from(shading.light_direction).normalize();
     let mesh = surface.mesh;
+    let far_light = match (shading.occlusion, surface.occlusion) {
+        (true, Some(field)) => Some(smoothed_far_factor(&buffer, &projected, mesh, &field.far_factor)),
+        _ => None,
+    };
     rgba.par_chunks_mut(width * 4).zip(darkness.par_chunks_mut(width)).enumerate().for_each(|(y, (row, dark_row))| {
         for x in 0..width {
             let face = buffer.face[y * width + x];
@@ -85,8 +108,9 @@ pub(crate) fn render_view(surface: &Surface, rotation_rad: f64, pixel_mm: f64, s
                 // modelling instead of going flat black.
                 tone *= 0.25 + 0.75 * ((normal.dot(&light) + 0.3) / 1.3).max(0.0);
             }
-            if let (true, Some(ao)) = (shading.occlusion, surface.occlusion) {
-                let a = ao[corners[0]] * w[0] + ao[corners[1]] * w[1] + ao[corners[2]] * w[2];
+            if let (Some(field), Some(far)) = (surface.occlusion, &far_light) {
+                let near = field.near[corners[0]] * w[0] + field.near[corners[1]] * w[1] + field.near[corners[2]] * w[2];
+                let a = ((near * far[y * width + x] - field.low) / field.span).clamp(0.0, 1.0);
                 tone *= 0.35 + 0.65 * a as f64;
             }
             let mut base = [1.0f64; 3];
@@ -106,6 +130,78 @@ pub(crate) fn render_view(surface: &Surface, rotation_rad: f64, pixel_mm: f64, s
         }
     });
     View { camera, buffer, projected, rgba, darkness }
+}
+
+/// The far occlusion factor per pixel, interpolated from the vertices and smoothed over
+/// the pixels the fragment covers (normalised convolution: empty pixels do not darken the
+/// outline). Three box passes approach a Gaussian at a cost independent of the width.
+fn smoothed_far_factor(buffer: &ZBuffer, projected: &[[f32; 3]], mesh: &Mesh, far_factor: &[f32]) -> Vec<f32> {
+    let (width, height) = (buffer.width, buffer.height);
+    let mut weighted = vec![0f32; width * height];
+    let mut covered = vec![0f32; width * height];
+    weighted.par_chunks_mut(width).zip(covered.par_chunks_mut(width)).enumerate().for_each(|(y, (row, mask))| {
+        for x in 0..width {
+            let face = buffer.face[y * width + x];
+            if face == NO_FACE {
+                continue;
+            }
+            let tri = mesh.triangles[face as usize];
+            let w = barycentric(projected, tri, x, y);
+            row[x] = (0..3).map(|k| far_factor[tri[k] as usize] * w[k]).sum();
+            mask[x] = 1.0;
+        }
+    });
+    let radius = ((FAR_OCCLUSION_SMOOTHING_SHARE * width.max(height) as f64) / 3.0).round().max(1.0) as usize;
+    for _ in 0..3 {
+        for image in [&mut weighted, &mut covered] {
+            box_blur_rows(image, width, radius);
+            box_blur_columns(image, width, height, radius);
+        }
+    }
+    weighted.iter().zip(&covered).map(|(&v, &c)| if c > 1e-6 { (v / c).clamp(0.0, 1.0) } else { 1.0 }).collect()
+}
+
+/// Mean over `2 radius + 1` pixels along each row (the window clipped at the ends).
+fn box_blur_rows(image: &mut [f32], width: usize, radius: usize) {
+    image.par_chunks_mut(width).for_each(|row| {
+        let line = row.to_vec();
+        box_mean(&line, radius, |i, v| row[i] = v);
+    });
+}
+
+/// Mean over `2 radius + 1` pixels along each column.
+fn box_blur_columns(image: &mut [f32], width: usize, height: usize, radius: usize) {
+    let columns: Vec<Vec<f32>> = (0..width)
+        .into_par_iter()
+        .map(|x| {
+            let column: Vec<f32> = (0..height).map(|y| image[y * width + x]).collect();
+            let mut out = vec![0f32; height];
+            box_mean(&column, radius, |i, v| out[i] = v);
+            out
+        })
+        .collect();
+    for (x, column) in columns.iter().enumerate() {
+        for (y, v) in column.iter().enumerate() {
+            image[y * width + x] = *v;
+        }
+    }
+}
+
+/// Running-sum mean of `values` over windows of `2 radius + 1` (sums of zeros beyond the
+/// ends, so that a normalised convolution stays exact at the border), given to `put`.
+fn box_mean(values: &[f32], radius: usize, mut put: impl FnMut(usize, f32)) {
+    let n = values.len();
+    let window = (2 * radius + 1) as f32;
+    let mut sum: f64 = values[..radius.min(n)].iter().map(|&v| v as f64).sum();
+    for i in 0..n {
+        if i + radius < n {
+            sum += values[i + radius] as f64;
+        }
+        put(i, (sum / window as f64) as f32);
+        if i >= radius {
+            sum -= values[i - radius] as f64;
+        }
+    }
 }
 
 /// The colour of the surface at barycentric `w` of `face`: the texture when there is one,
@@ -311,6 +407,41 @@ pub(crate) fn visible_creases(creases: &[[u32; 2]], view: &View) -> Vec<[[f64; 2
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn box_mean_of_a_step_is_a_ramp_as_wide_as_the_window() {
+        let values: Vec<f32> = (0..20).map(|i| if i < 10 { 0.0 } else { 1.0 }).collect();
+        let mut out = vec![0f32; 20];
+        box_mean(&values, 2, |i, v| out[i] = v);
+        assert_eq!(&out[..8], &[0.0; 8]);
+        assert_eq!(&out[12..18], &[1.0; 6]);
+        // Zeros beyond the ends: the normalised convolution divides them out.
+        for (i, expected) in [(8, 0.2), (9, 0.4), (10, 0.6), (11, 0.8), (18, 0.8), (19, 0.6)] {
+            assert!((out[i] - expected).abs() < 1e-6, "{i}: {}", out[i]);
+        }
+    }
+
+    #[test]
+    fn smoothing_keeps_a_uniform_far_factor_uniform_up_to_the_outline() {
+        // A square of two triangles covering part of a 40 x 30 view.
+        let mesh = Mesh::new(
+            vec![Point::new(5.0, 4.0, 0.0), Point::new(30.0, 4.0, 0.0), Point::new(30.0, 25.0, 0.0), Point::new(5.0, 25.0, 0.0)],
+            vec![[0, 1, 2], [0, 2, 3]],
+        );
+        let projected: Vec<[f32; 3]> = mesh.positions.iter().map(|p| [p.x as f32, p.y as f32, 0.0]).collect();
+        let buffer = rasterize_parallel(40, 30, &projected, &mesh.triangles);
+        let smoothed = smoothed_far_factor(&buffer, &projected, &mesh, &[0.6; 4]);
+        for (i, &face) in buffer.face.iter().enumerate() {
+            if face != NO_FACE {
+                assert!((smoothed[i] - 0.6).abs() < 1e-5, "pixel {i}: {}", smoothed[i]);
+            }
+        }
+        // A factor that changes from one corner to the other changes smoothly.
+        let ramp = smoothed_far_factor(&buffer, &projected, &mesh, &[0.2, 1.0, 1.0, 0.2]);
+        let row = 15 * 40;
+        let steps: Vec<f32> = (6..29).map(|x| ramp[row + x + 1] - ramp[row + x]).collect();
+        assert!(steps.iter().all(|d| *d >= -1e-6 && *d < 0.08), "{steps:?}");
+    }
 
     #[test]
     fn outline_of_a_filled_square_is_its_four_corners() {

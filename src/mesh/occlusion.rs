@@ -31,6 +31,36 @@ impl Default for OcclusionOptions {
 /// area, as MeshLab does. Errors on a mesh without faces or on zero directions or
 /// resolution.
 pub fn ambient_occlusion(mesh: &Mesh, options: &OcclusionOptions) -> Result<Vec<f32>> {
+    Ok(light_from_directions(mesh, options, None)?.full)
+}
+
+/// Ambient light per vertex split by the occluders' distance, for drawings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NearAndFarLight {
+    /// [`ambient_occlusion`] itself: every occluder counts, at any distance.
+    pub full: Vec<f32>,
+    /// Obscurance (Zhukov et al. 1998): an occluder darkens fully when it touches the
+    /// surface and less with its distance, not at all beyond the reach. Never below `full`.
+    pub near: Vec<f32>,
+}
+
+/// [`ambient_occlusion`] and, from the same depth maps, the light that occluders within
+/// `reach_mm` take away ([`NearAndFarLight::near`]). With a few dozen directions, the far
+/// occluders (a sherd's own rims seen across its concave inside) cast hard-edged shadows,
+/// one per direction, that show as polygonal patches; the near ones (grooves, creases,
+/// rills) are the detail a drawing wants sharp. A drawing keeps `near` and smooths the rest
+/// (`full / near`) over the surface. Errors as [`ambient_occlusion`], and on a reach that is
+/// not positive.
+pub fn near_and_far_light(mesh: &Mesh, options: &OcclusionOptions, reach_mm: f64) -> Result<NearAndFarLight> {
+    if !(reach_mm.is_finite() && reach_mm > 0.0) {
+        return Err(Error::InvalidArgument(format!("the occlusion reach must be positive, got {reach_mm} mm")));
+    }
+    light_from_directions(mesh, options, Some(reach_mm as f32))
+}
+
+/// The light of every face summed over the directions, then averaged to the vertices; the
+/// near light only when a reach is given (`near` is then filled, otherwise empty).
+fn light_from_directions(mesh: &Mesh, options: &OcclusionOptions, reach_mm: Option<f32>) -> Result<NearAndFarLight> {
     if mesh.triangles.is_empty() {
         return Err(Error::InvalidArgument("ambient occlusion needs a mesh with faces, not a point cloud".into()));
     }
@@ -43,6 +73,7 @@ pub fn ambient_occlusion(mesh: &Mesh, options: &OcclusionOptions) -> Result<Vec<
     // As MeshLab: per face, from its barycentre along its normal, then the area-weighted
     // mean of the faces around each vertex.
     let face_count = mesh.face_count();
+    let near_count = if reach_mm.is_some() { face_count } else { 0 };
     let mut normals = Vec::with_capacity(face_count);
     let mut areas = Vec::with_capacity(face_count);
     for f in 0..face_count {
@@ -54,12 +85,14 @@ pub fn ambient_occlusion(mesh: &Mesh, options: &OcclusionOptions) -> Result<Vec<
     let diameter = (hi - lo).norm().max(1e-9);
     let pixel_mm = diameter / options.resolution as f64;
     let directions = sphere_directions(options.directions);
-    // Each task sums the light its directions bring to every face; sums are added at the end.
-    let light = directions
+    // Each task sums the light its directions bring to every face (all occluders, and
+    // near ones only); sums are added at the end.
+    let zero = || (vec![0f32; face_count], vec![0f32; near_count]);
+    let (full_light, near_light) = directions
         .par_iter()
         .fold(
-            || (vec![0f32; face_count], None::<ZBuffer>),
-            |(mut light, buffer), sky| {
+            || (zero(), None::<ZBuffer>),
+            |((mut full, mut near), buffer), sky| {
                 // Look from the sky towards the mesh: depth grows away from the sky.
                 let camera = OrthographicCamera::fit(&mesh.positions, -sky, any_perpendicular(sky), pixel_mm, 2);
                 let mut buffer = match buffer {
@@ -86,32 +119,48 @@ pub fn ambient_occlusion(mesh: &Mesh, options: &OcclusionOptions) -> Result<Vec<
                     // (tuned on A011 against pymeshlab, tests/occlusion.rs).
                     let tangent = (1.0 - cosine * cosine).sqrt() / cosine.max(0.2);
                     let bias = pixel_mm as f32 * (0.05 + 0.2 * tangent);
-                    if owns_nearby_pixel(&buffer, p[0], p[1], f as u32) || p[2] <= bilinear_depth(&buffer, p[0], p[1]) + bias {
-                        light[f] += cosine;
+                    let occluder_distance_mm = if owns_nearby_pixel(&buffer, p[0], p[1], f as u32) {
+                        f32::INFINITY
+                    } else {
+                        p[2] - bilinear_depth(&buffer, p[0], p[1])
+                    };
+                    let open = occluder_distance_mm <= bias || occluder_distance_mm == f32::INFINITY;
+                    if open {
+                        full[f] += cosine;
+                    }
+                    if let Some(reach_mm) = reach_mm {
+                        // Smoothstep: a near shadow fades out with the occluder's distance
+                        // instead of ending at an edge.
+                        let t = if open { 1.0 } else { (occluder_distance_mm / reach_mm).min(1.0) };
+                        near[f] += cosine * t * t * (3.0 - 2.0 * t);
                     }
                 }
-                (light, Some(buffer))
+                ((full, near), Some(buffer))
             },
         )
         .map(|(light, _)| light)
-        .reduce(
-            || vec![0f32; face_count],
-            |mut l, l2| {
-                l.iter_mut().zip(&l2).for_each(|(a, b)| *a += b);
-                l
-            },
-        );
+        .reduce(zero, |(mut full, mut near), (full2, near2)| {
+            full.iter_mut().zip(&full2).for_each(|(a, b)| *a += b);
+            near.iter_mut().zip(&near2).for_each(|(a, b)| *a += b);
+            (full, near)
+        });
     // A face open to its whole hemisphere sums cosines to about directions / 4.
-    let full = options.directions as f64 / 4.0;
-    let mut sum = vec![0f64; mesh.vertex_count()];
-    let mut weight = vec![0f64; mesh.vertex_count()];
-    for (f, t) in mesh.triangles.iter().enumerate() {
-        for &v in t {
-            sum[v as usize] += light[f] as f64 * areas[f];
-            weight[v as usize] += areas[f];
+    let full_hemisphere = options.directions as f64 / 4.0;
+    let to_vertices = |light: &[f32]| -> Vec<f32> {
+        if light.is_empty() {
+            return Vec::new();
         }
-    }
-    Ok(sum.iter().zip(&weight).map(|(&s, &w)| if w > 0.0 { (s / w / full).min(1.0) as f32 } else { 1.0 }).collect())
+        let mut sum = vec![0f64; mesh.vertex_count()];
+        let mut weight = vec![0f64; mesh.vertex_count()];
+        for (f, t) in mesh.triangles.iter().enumerate() {
+            for &v in t {
+                sum[v as usize] += light[f] as f64 * areas[f];
+                weight[v as usize] += areas[f];
+            }
+        }
+        sum.iter().zip(&weight).map(|(&s, &w)| if w > 0.0 { (s / w / full_hemisphere).min(1.0) as f32 } else { 1.0 }).collect()
+    };
+    Ok(NearAndFarLight { full: to_vertices(&full_light), near: to_vertices(&near_light) })
 }
 
 /// True when one of the four pixel centres around `(x, y)` shows `face`.
@@ -210,6 +259,26 @@ mod tests {
         assert!(at(10, 20) > 0.85, "open floor {}", at(10, 20));
         assert!(at(10, 1) < 0.7, "by the wall {}", at(10, 1));
         assert!(at(10, 1) < at(10, 5) && at(10, 5) < at(10, 20));
+    }
+
+    #[test]
+    fn near_light_drops_only_what_near_occluders_take() {
+        let mesh = floor_with_wall();
+        let options = OcclusionOptions { directions: 256, resolution: 256 };
+        let light = near_and_far_light(&mesh, &options, 3.0).unwrap();
+        // The same light (up to the order rayon adds the directions' sums in).
+        let alone = ambient_occlusion(&mesh, &options).unwrap();
+        assert!(light.full.iter().zip(&alone).all(|(a, b)| (a - b).abs() < 1e-5));
+        assert!(light.near.iter().zip(&light.full).all(|(n, f)| n >= f), "near light below the full light");
+        let near = |x: usize, y: usize| light.near[y * 21 + x];
+        let full = |x: usize, y: usize| light.full[y * 21 + x];
+        // 10 mm from the wall, beyond the 3 mm reach: the wall takes light from the full
+        // field only; 1 mm from it, from the near field too.
+        assert!(near(10, 10) > 0.97 && full(10, 10) < near(10, 10) - 0.05, "near {} full {}", near(10, 10), full(10, 10));
+        assert!(near(10, 1) < near(10, 10) - 0.1, "by the wall {} vs {}", near(10, 1), near(10, 10));
+        for reach in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            assert!(near_and_far_light(&mesh, &options, reach).is_err(), "reach {reach} accepted");
+        }
     }
 
     #[test]
