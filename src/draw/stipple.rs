@@ -40,45 +40,106 @@ pub fn stipple_dots(darkness: &[f32], width: usize, height: usize, spacing_px: f
         darkness[row * width + column]
     };
     let max_spacing = spacing_px / (WHITE_CUTOFF as f64).sqrt();
-    // Grid of cells of the smallest spacing: a cell holds at most a few dots.
-    let cell = spacing_px / std::f64::consts::SQRT_2;
-    let (columns, rows) = ((width as f64 / cell).ceil() as usize + 1, (height as f64 / cell).ceil() as usize + 1);
-    let mut grid: Vec<Vec<[f64; 2]>> = vec![Vec::new(); columns * rows];
+    let mut grid = DotGrid::new(width, height, spacing_px);
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     // Enough candidates to saturate the darkest areas several times over.
     let candidates = ((dark_area / (spacing_px * spacing_px)) * 12.0).ceil() as usize + 16;
-    let reach = (max_spacing / cell).ceil() as i64;
-    let mut dots = Vec::new();
-    for _ in 0..candidates {
-        let (x, y) = (rng.random::<f64>() * width as f64, rng.random::<f64>() * height as f64);
-        let tone = tone_at(x, y);
-        if tone < WHITE_CUTOFF {
-            continue;
-        }
-        let spacing = spacing_px / (tone as f64).sqrt();
-        let spacing2 = spacing * spacing;
-        let (cx, cy) = ((x / cell) as i64, (y / cell) as i64);
-        let reach_here = ((spacing / cell).ceil() as i64).min(reach);
-        let mut free = true;
-        'search: for gy in (cy - reach_here).max(0)..=(cy + reach_here).min(rows as i64 - 1) {
-            for gx in (cx - reach_here).max(0)..=(cx + reach_here).min(columns as i64 - 1) {
-                for q in &grid[gy as usize * columns + gx as usize] {
-                    if (q[0] - x).powi(2) + (q[1] - y).powi(2) < spacing2 {
-                        free = false;
-                        break 'search;
-                    }
+    let reach = (max_spacing / grid.cell).ceil() as i64;
+    // Candidates are thrown tile by tile, each tile its share of them in random order: the
+    // tone image and the grid are read where the last candidates read them, instead of at
+    // random over a view of millions of pixels (cache misses were most of the time). Every
+    // pair of dots is still checked, so the spacing holds across tile borders. White tiles
+    // get none: a small dark patch in a large white view gets all the candidates.
+    let tiles: Vec<(usize, usize, f64, f64)> = (0..height.div_ceil(TILE_PX))
+        .flat_map(|ty| (0..width.div_ceil(TILE_PX)).map(move |tx| (tx * TILE_PX, ty * TILE_PX)))
+        .filter(|&(x0, y0)| {
+            (y0..(y0 + TILE_PX).min(height)).any(|y| darkness[y * width + x0..y * width + (x0 + TILE_PX).min(width)].iter().any(|&d| d >= WHITE_CUTOFF))
+        })
+        .map(|(x0, y0)| (x0, y0, (width - x0).min(TILE_PX) as f64, (height - y0).min(TILE_PX) as f64))
+        .collect();
+    let shaded_area: f64 = tiles.iter().map(|t| t.2 * t.3).sum();
+    for (x0, y0, tile_width, tile_height) in tiles {
+        let share = candidates as f64 * tile_width * tile_height / shaded_area;
+        // Stochastic rounding keeps every tile's expected count exact.
+        let count = share.floor() as usize + usize::from(rng.random::<f64>() < share.fract());
+        for _ in 0..count {
+            let (x, y) = (x0 as f64 + rng.random::<f64>() * tile_width, y0 as f64 + rng.random::<f64>() * tile_height);
+            let tone = tone_at(x, y);
+            if tone < WHITE_CUTOFF {
+                continue;
+            }
+            let spacing = spacing_px / (tone as f64).sqrt();
+            if grid.is_free(x, y, spacing, reach) {
+                grid.insert(x, y);
+                if grid.dots.len() == MAX_STIPPLE_DOTS {
+                    return grid.dots;
                 }
             }
         }
-        if free {
-            grid[cy as usize * columns + cx as usize].push([x, y]);
-            dots.push([x, y]);
-            if dots.len() == MAX_STIPPLE_DOTS {
-                break;
+    }
+    grid.dots
+}
+
+/// Side of the tiles candidates are thrown in, pixels.
+const TILE_PX: usize = 64;
+
+/// Marks an empty cell or the end of a cell's list.
+const NO_DOT: u32 = u32::MAX;
+
+/// Most cells of the search grid (16 MB of list heads): views are up to 50 million
+/// pixels, and a cell per half-pixel of such a view would take gigabytes.
+const MAX_GRID_CELLS: usize = 4_000_000;
+
+/// The dots placed so far, found by cell: cells of the smallest spacing, so that a cell
+/// holds at most one dot (unless the view is so large and so sparsely shaded that they
+/// would outnumber [`MAX_GRID_CELLS`]). Each cell is the head of a list of its dots, in
+/// flat arrays rather than a vector per cell: an empty cell costs 4 bytes and the search
+/// reads neighbouring cells in order.
+struct DotGrid {
+    cell: f64,
+    columns: usize,
+    rows: usize,
+    first_in_cell: Vec<u32>,
+    next_in_cell: Vec<u32>,
+    dots: Vec<[f64; 2]>,
+}
+
+impl DotGrid {
+    fn new(width: usize, height: usize, spacing_px: f64) -> Self {
+        let area = width as f64 * height as f64;
+        let cell = (spacing_px / std::f64::consts::SQRT_2).max((area / MAX_GRID_CELLS as f64).sqrt());
+        let (columns, rows) = ((width as f64 / cell).ceil() as usize + 1, (height as f64 / cell).ceil() as usize + 1);
+        DotGrid { cell, columns, rows, first_in_cell: vec![NO_DOT; columns * rows], next_in_cell: Vec::new(), dots: Vec::new() }
+    }
+
+    /// True when no dot lies within `spacing` of `(x, y)`, searching at most `reach`
+    /// cells away.
+    fn is_free(&self, x: f64, y: f64, spacing: f64, reach: i64) -> bool {
+        let spacing2 = spacing * spacing;
+        let (cx, cy) = ((x / self.cell) as i64, (y / self.cell) as i64);
+        let reach = ((spacing / self.cell).ceil() as i64).min(reach);
+        for gy in (cy - reach).max(0)..=(cy + reach).min(self.rows as i64 - 1) {
+            let row = gy as usize * self.columns;
+            for gx in (cx - reach).max(0)..=(cx + reach).min(self.columns as i64 - 1) {
+                let mut dot = self.first_in_cell[row + gx as usize];
+                while dot != NO_DOT {
+                    let q = self.dots[dot as usize];
+                    if (q[0] - x).powi(2) + (q[1] - y).powi(2) < spacing2 {
+                        return false;
+                    }
+                    dot = self.next_in_cell[dot as usize];
+                }
             }
         }
+        true
     }
-    dots
+
+    fn insert(&mut self, x: f64, y: f64) {
+        let cell = (y / self.cell) as usize * self.columns + (x / self.cell) as usize;
+        self.next_in_cell.push(self.first_in_cell[cell]);
+        self.first_in_cell[cell] = self.dots.len() as u32;
+        self.dots.push([x, y]);
+    }
 }
 
 #[cfg(test)]
@@ -107,11 +168,30 @@ mod tests {
             }
         }
         // Not a grid: the x coordinates do not repeat.
-        let mut xs: Vec<i64> = dots.iter().map(|d| (d[0] * 1000.0) as i64).collect();
+        let mut xs: Vec<i64> = dots.iter().map(|d| (d[0] * 1e9) as i64).collect();
         xs.sort();
         xs.dedup();
         assert_eq!(xs.len(), dots.len());
         assert!(stipple_dots(&vec![0.0; 100], 10, 10, 2.0, 1).is_empty());
+    }
+
+    #[test]
+    fn a_large_sparse_view_keeps_the_spacing_with_a_capped_grid() {
+        // 6 million pixels at one-pixel spacing would be 12 million cells: the grid is
+        // capped and its cells hold several dots; the spacing must hold all the same.
+        let (width, height) = (3000, 2000);
+        let mut darkness = vec![0f32; width * height];
+        for y in 1000..1100 {
+            darkness[y * width + 1500..y * width + 1600].fill(1.0);
+        }
+        let dots = stipple_dots(&darkness, width, height, 1.0, 11);
+        assert!(dots.len() > 4000, "{} dots in a 100 x 100 black square", dots.len());
+        assert!(dots.iter().all(|d| (1500.0..1600.0).contains(&d[0]) && (1000.0..1100.0).contains(&d[1])));
+        for (i, a) in dots.iter().enumerate() {
+            for b in &dots[i + 1..] {
+                assert!((a[0] - b[0]).hypot(a[1] - b[1]) >= 1.0 - 1e-9, "{a:?} and {b:?} too close");
+            }
+        }
     }
 
     #[test]
