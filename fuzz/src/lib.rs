@@ -144,13 +144,16 @@ pub fn pipeline(data: &[u8]) {
 }
 
 /// Draws with the styles of the bits of `style` (all six when none is set), at the lowest
-/// resolution (10 dpi), so that a view of a mesh 3 m across stays a few megapixels: at
-/// 50 dpi such views (bounded at 50 million pixels by the library, so not a hang) took
-/// over 10 s each under AddressSanitizer and hid the fuzzer's time in shading.
+/// resolution (10 dpi) and at 1:5, so that a view of a mesh 3 m across stays a fraction
+/// of a megapixel: at 50 dpi such views (bounded at 50 million pixels by the library, so
+/// not a hang) took over 10 s each under AddressSanitizer, and at 10 dpi and 1:1 a hundred
+/// overlapping triangles each filling a 1300-pixel view still took 0.9 s natively and 33 s
+/// under AddressSanitizer (`fuzz/regressions/pipeline/timeout-*-large-triangles-*`):
+/// the fuzzer's time went to filling pixels instead of to new inputs.
 fn draw(mesh: &Mesh, axis: &Axis, style: u8) {
     let bit = |n: u8| style & (1 << n) != 0 || style & 63 == 0;
     let style = Style { linear: bit(0), colour: bit(1), light: bit(2), occlusion: bit(3), stipple: bit(4), regularity: bit(5) };
-    let options = DrawOptions { style, dpi: 10.0, ..DrawOptions::default() };
+    let options = DrawOptions { style, dpi: 10.0, scale_denominator: 5, ..DrawOptions::default() };
     if let Ok(drawing) = Drawing::build(mesh, axis, &options) {
         let _ = drawing.to_bytes(Format::Svg);
     }
