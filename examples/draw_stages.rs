@@ -78,6 +78,13 @@ fn main() -> sherd::Result<()> {
                     drawing.to_bytes(format).unwrap();
                 });
             }
+            // The PNG's two halves: rasterizing the page, and compressing it.
+            let mut pixmap = None;
+            time("    of which rasterize (tiny-skia)", &mut || pixmap = Some(sherd::draw::png::render(&drawing, drawing.dpi).unwrap()));
+            let pixmap = pixmap.unwrap();
+            time("    of which compress (png)", &mut || {
+                sherd::draw::png::encode_pixmap(&pixmap, Some(drawing.dpi)).unwrap();
+            });
         }
     }
     Ok(())

@@ -53,9 +53,14 @@ fn decode_png(bytes: &[u8]) -> (u32, u32, Vec<u8>, Option<png::PixelDimensions>)
     let dims = reader.info().pixel_dims;
     let mut buf = vec![0; reader.output_buffer_size()];
     let info = reader.next_frame(&mut buf).unwrap();
-    assert_eq!(info.color_type, png::ColorType::Rgba);
     buf.truncate(info.buffer_size());
-    (info.width, info.height, buf, dims)
+    // The page is opaque: RGB, expanded here to RGBA for the pixel checks.
+    let rgba = match info.color_type {
+        png::ColorType::Rgb => buf.chunks_exact(3).flat_map(|p| [p[0], p[1], p[2], 255]).collect(),
+        png::ColorType::Rgba => buf,
+        other => panic!("unexpected PNG colour type {other:?}"),
+    };
+    (info.width, info.height, rgba, dims)
 }
 
 #[test]

@@ -18,9 +18,19 @@ pub fn pixel_size(drawing: &Drawing, dpi: f64) -> (u32, u32) {
 
 /// The drawing rendered at `dpi` on a white background, as PNG bytes.
 pub fn to_png(drawing: &Drawing, dpi: f64) -> Result<Vec<u8>> {
-    let pixmap = render(drawing, dpi)?;
-    let rgba = demultiply(pixmap.data());
-    encode_rgba_png(pixmap.width(), pixmap.height(), &rgba, Some(dpi))
+    encode_pixmap(&render(drawing, dpi)?, Some(dpi))
+}
+
+/// A rendered pixmap as PNG bytes, recording `dpi` when given. A page on its white background
+/// is opaque: it is written as RGB, a quarter less to compress than RGBA and no demultiplying.
+pub fn encode_pixmap(pixmap: &Pixmap, dpi: Option<f64>) -> Result<Vec<u8>> {
+    let data = pixmap.data();
+    if data.chunks_exact(4).all(|px| px[3] == 255) {
+        let rgb: Vec<u8> = data.chunks_exact(4).flat_map(|px| [px[0], px[1], px[2]]).collect();
+        encode_png(pixmap.width(), pixmap.height(), &rgb, png::ColorType::Rgb, dpi)
+    } else {
+        encode_rgba_png(pixmap.width(), pixmap.height(), &demultiply(data), dpi)
+    }
 }
 
 /// The drawing rendered at `dpi` (premultiplied RGBA pixmap).
@@ -142,10 +152,14 @@ fn demultiply(premultiplied: &[u8]) -> Vec<u8> {
 
 /// Encodes straight-alpha RGBA as PNG, recording `dpi` (pHYs) when given.
 pub fn encode_rgba_png(width: u32, height: u32, rgba: &[u8], dpi: Option<f64>) -> Result<Vec<u8>> {
+    encode_png(width, height, rgba, png::ColorType::Rgba, dpi)
+}
+
+fn encode_png(width: u32, height: u32, pixels: &[u8], color: png::ColorType, dpi: Option<f64>) -> Result<Vec<u8>> {
     let mut bytes = Vec::new();
     {
         let mut encoder = png::Encoder::new(&mut bytes, width, height);
-        encoder.set_color(png::ColorType::Rgba);
+        encoder.set_color(color);
         encoder.set_depth(png::BitDepth::Eight);
         encoder.set_compression(png::Compression::Fast);
         if let Some(dpi) = dpi {
@@ -153,7 +167,34 @@ pub fn encode_rgba_png(width: u32, height: u32, rgba: &[u8], dpi: Option<f64>) -
             encoder.set_pixel_dims(Some(png::PixelDimensions { xppu: per_metre, yppu: per_metre, unit: png::Unit::Meter }));
         }
         let mut writer = encoder.write_header().map_err(|e| Error::InvalidArgument(format!("PNG encoding: {e}")))?;
-        writer.write_image_data(rgba).map_err(|e| Error::InvalidArgument(format!("PNG encoding: {e}")))?;
+        writer.write_image_data(pixels).map_err(|e| Error::InvalidArgument(format!("PNG encoding: {e}")))?;
     }
     Ok(bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn colour_type_and_pixels(bytes: &[u8]) -> (png::ColorType, Vec<u8>) {
+        let mut reader = png::Decoder::new(std::io::Cursor::new(bytes)).read_info().unwrap();
+        let mut pixels = vec![0; reader.output_buffer_size()];
+        let info = reader.next_frame(&mut pixels).unwrap();
+        pixels.truncate(info.buffer_size());
+        (info.color_type, pixels)
+    }
+
+    #[test]
+    fn an_opaque_page_is_written_as_rgb_and_a_transparent_one_keeps_its_alpha() {
+        let mut pixmap = Pixmap::new(2, 1).unwrap();
+        pixmap.fill(tiny_skia::Color::from_rgba8(10, 20, 30, 255));
+        let (colour, pixels) = colour_type_and_pixels(&encode_pixmap(&pixmap, Some(300.0)).unwrap());
+        assert_eq!((colour, pixels), (png::ColorType::Rgb, vec![10, 20, 30, 10, 20, 30]));
+        // Half-transparent grey comes back demultiplied (within the rounding of 8 bits).
+        pixmap.fill(tiny_skia::Color::from_rgba8(127, 127, 127, 128));
+        let (colour, pixels) = colour_type_and_pixels(&encode_pixmap(&pixmap, None).unwrap());
+        assert_eq!(colour, png::ColorType::Rgba);
+        assert_eq!(pixels[3], 128);
+        assert!(pixels[..3].iter().all(|&c| c.abs_diff(127) <= 1), "{pixels:?}");
+    }
 }

@@ -8,6 +8,7 @@ use nalgebra::Rotation3;
 use rayon::prelude::*;
 
 use crate::mesh::raster::{barycentric, rasterize_parallel, OrthographicCamera, ZBuffer, NO_FACE};
+use crate::mesh::topology::Topology;
 use crate::mesh::{Mesh, Point, Vector};
 use crate::profile::regularity::ColorMap;
 
@@ -362,46 +363,96 @@ fn segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
 /// edges for visibility with [`visible_creases`].
 pub(crate) fn crease_edges(mesh: &Mesh, angle_deg: f64) -> Vec<[u32; 2]> {
     let cos_limit = angle_deg.to_radians().cos();
-    let mut edges: Vec<(u32, u32, u32)> = Vec::with_capacity(mesh.triangles.len() * 3);
-    for (f, t) in mesh.triangles.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            edges.push((a.min(b), a.max(b), f as u32));
-        }
-    }
-    edges.par_sort_unstable();
+    let topology = Topology::new(mesh);
     let face_normal = |f: u32| mesh.face_normal_scaled(f as usize).try_normalize(1e-30).unwrap_or_else(Vector::zeros);
-    edges
-        .par_windows(2)
-        .filter_map(|pair| {
-            let ((a, b, f), (a2, b2, g)) = (pair[0], pair[1]);
-            ((a, b) == (a2, b2) && face_normal(f).dot(&face_normal(g)) <= cos_limit).then_some([a, b])
+    (0..topology.edge_count())
+        .into_par_iter()
+        .filter(|&edge| {
+            topology.faces_of_edge(edge).windows(2).any(|pair| face_normal(pair[0]).dot(&face_normal(pair[1])) <= cos_limit)
         })
+        .map(|edge| topology.edges()[edge])
         .collect()
 }
 
-/// The crease edges seen in `view` (their midpoint not behind the z-buffer's surface), as
-/// pixel-coordinate segments.
-pub(crate) fn visible_creases(creases: &[[u32; 2]], view: &View) -> Vec<[[f64; 2]; 2]> {
+/// The crease edges seen in `view` (their midpoint not behind the z-buffer's surface), joined
+/// end to end into polylines in pixel coordinates and simplified within `tolerance_px`. One
+/// stroke per chain draws proper joins where thousands of separately capped edges would
+/// not, and keeps the vector files and the rasterizer's work small.
+pub(crate) fn visible_crease_lines(creases: &[[u32; 2]], view: &View, tolerance_px: f64) -> Vec<Vec<[f64; 2]>> {
     let buffer = &view.buffer;
     let pixel = view.camera.pixel_mm as f32;
-    creases
+    let visible: Vec<[u32; 2]> = creases
         .par_iter()
-        .filter_map(|&[a, b]| {
+        .copied()
+        .filter(|&[a, b]| {
             let (p, q) = (view.projected[a as usize], view.projected[b as usize]);
             let mid = [(p[0] + q[0]) / 2.0, (p[1] + q[1]) / 2.0, (p[2] + q[2]) / 2.0];
             // Midpoints in (-1, 0) would truncate to pixel 0: test the sign first.
             if !(mid[0] >= 0.0 && mid[1] >= 0.0) {
-                return None;
+                return false;
             }
             let (x, y) = (mid[0] as usize, mid[1] as usize);
             if x >= buffer.width || y >= buffer.height {
-                return None;
+                return false;
             }
-            let seen = buffer.depth[y * buffer.width + x];
-            (mid[2] <= seen + 2.0 * pixel).then_some([[p[0] as f64, p[1] as f64], [q[0] as f64, q[1] as f64]])
+            mid[2] <= buffer.depth[y * buffer.width + x] + 2.0 * pixel
+        })
+        .collect();
+    chain_edges(&visible)
+        .par_iter()
+        .map(|chain| {
+            let points: Vec<[f64; 2]> =
+                chain.iter().map(|&v| [view.projected[v as usize][0] as f64, view.projected[v as usize][1] as f64]).collect();
+            douglas_peucker(&points, tolerance_px)
         })
         .collect()
+}
+
+/// `edges` joined into chains of vertices: a chain runs through vertices shared by exactly
+/// two edges and stops at ends and branchings; a closed loop repeats its first vertex.
+pub(crate) fn chain_edges(edges: &[[u32; 2]]) -> Vec<Vec<u32>> {
+    // Incident edges of each vertex, as (vertex, edge) pairs sorted by vertex.
+    let mut incidence: Vec<(u32, u32)> = Vec::with_capacity(edges.len() * 2);
+    for (e, &[a, b]) in edges.iter().enumerate() {
+        incidence.push((a, e as u32));
+        incidence.push((b, e as u32));
+    }
+    incidence.sort_unstable();
+    let incident = |v: u32| {
+        let start = incidence.partition_point(|&(w, _)| w < v);
+        let end = incidence.partition_point(|&(w, _)| w <= v);
+        &incidence[start..end]
+    };
+    let mut used = vec![false; edges.len()];
+    // From the end vertex `from` of the chain, follow the one unused edge while `from` has
+    // exactly two edges.
+    let extend = |chain: &mut Vec<u32>, used: &mut Vec<bool>| loop {
+        let from = *chain.last().unwrap_or(&0);
+        let around = incident(from);
+        if around.len() != 2 {
+            return;
+        }
+        let Some(&(_, e)) = around.iter().find(|&&(_, e)| !used[e as usize]) else { return };
+        used[e as usize] = true;
+        let [a, b] = edges[e as usize];
+        chain.push(if a == from { b } else { a });
+    };
+    let mut chains = Vec::new();
+    for (e, &[a, b]) in edges.iter().enumerate() {
+        if used[e] {
+            continue;
+        }
+        used[e] = true;
+        let mut forward = vec![a, b];
+        extend(&mut forward, &mut used);
+        let mut backward = vec![a];
+        extend(&mut backward, &mut used);
+        backward.reverse();
+        backward.pop();
+        backward.extend(forward);
+        chains.push(backward);
+    }
+    chains
 }
 
 #[cfg(test)]
@@ -441,6 +492,23 @@ mod tests {
         let row = 15 * 40;
         let steps: Vec<f32> = (6..29).map(|x| ramp[row + x + 1] - ramp[row + x]).collect();
         assert!(steps.iter().all(|d| *d >= -1e-6 && *d < 0.08), "{steps:?}");
+    }
+
+    #[test]
+    fn edges_chain_through_degree_two_vertices_and_stop_at_branches() {
+        // A path 0-1-2-3 given out of order and reversed, a loop 10-11-12, and a branch
+        // at 20 with three spokes.
+        let edges = [[2, 1], [3, 2], [0, 1], [10, 11], [12, 10], [11, 12], [20, 21], [22, 20], [20, 23]];
+        let mut chains = chain_edges(&edges);
+        let path = chains.iter().find(|c| c.contains(&0)).unwrap().clone();
+        assert!(path == vec![0, 1, 2, 3] || path == vec![3, 2, 1, 0], "{path:?}");
+        let cycle = chains.iter().find(|c| c.contains(&10)).unwrap();
+        assert_eq!(cycle.len(), 4, "a loop of 3 edges repeats its start: {cycle:?}");
+        assert_eq!(cycle.first(), cycle.last());
+        chains.retain(|c| c.contains(&20));
+        assert_eq!(chains.len(), 3, "three spokes from a branch: {chains:?}");
+        let total: usize = chain_edges(&edges).iter().map(|c| c.len() - 1).sum();
+        assert_eq!(total, edges.len(), "every edge drawn once");
     }
 
     #[test]

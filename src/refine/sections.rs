@@ -12,6 +12,7 @@ use nalgebra::{Isometry3, Rotation3, Vector2};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use crate::mesh::topology::{Topology, UnionFind};
 use crate::mesh::{Mesh, Point, Vector};
 use crate::orient::Axis;
 use crate::{Error, Result};
@@ -231,48 +232,42 @@ fn skins_by_smooth_regions(mesh: &Mesh, points: &[Point]) -> Vec<Option<Skin>> {
             skin_by_normal(&centre, &n.try_normalize(1e-300)?)
         })
         .collect();
-    let mut parent: Vec<usize> = (0..mesh.triangles.len()).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
     let cosine_limit = SMOOTH_REGION_ANGLE_DEG.to_radians().cos();
-    let mut edges: std::collections::HashMap<(u32, u32), usize> = std::collections::HashMap::with_capacity(mesh.triangles.len() * 2);
-    for (face, t) in mesh.triangles.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            let key = (a.min(b), a.max(b));
-            if let Some(&other) = edges.get(&key) {
-                let (n, m) = (face_normals[face], face_normals[other]);
-                let norms = n.norm() * m.norm();
-                let same_skin = face_skins[face].is_some() && face_skins[face] == face_skins[other];
-                if same_skin && norms > 0.0 && n.dot(&m) >= cosine_limit * norms {
-                    let (ra, rb) = (root(&mut parent, face), root(&mut parent, other));
-                    parent[ra] = rb;
-                }
-            } else {
-                edges.insert(key, face);
+    let topology = Topology::new(mesh);
+    let mut regions = UnionFind::new(mesh.triangles.len());
+    for edge in 0..topology.edge_count() {
+        // Faces come in increasing order: each later face is compared with the first.
+        let (&other, later) = match topology.faces_of_edge(edge).split_first() {
+            Some(split) => split,
+            None => continue,
+        };
+        let other = other as usize;
+        for &face in later {
+            let face = face as usize;
+            let (n, m) = (face_normals[face], face_normals[other]);
+            let norms = n.norm() * m.norm();
+            let same_skin = face_skins[face].is_some() && face_skins[face] == face_skins[other];
+            if same_skin && norms > 0.0 && n.dot(&m) >= cosine_limit * norms {
+                regions.union(face, other);
             }
         }
     }
-    let mut region_area = std::collections::HashMap::<usize, f64>::new();
-    let mut region_radial = std::collections::HashMap::<usize, f64>::new();
-    let roots: Vec<usize> = (0..mesh.triangles.len()).map(|f| root(&mut parent, f)).collect();
+    // Per region, indexed by its root face.
+    let mut region_area = vec![0.0; mesh.triangles.len()];
+    let mut region_radial = vec![0.0; mesh.triangles.len()];
+    let roots: Vec<usize> = (0..mesh.triangles.len()).map(|f| regions.find(f)).collect();
     for (face, t) in mesh.triangles.iter().enumerate() {
         let n = face_normals[face];
         let centre = (points[t[0] as usize].coords + points[t[1] as usize].coords + points[t[2] as usize].coords) / 3.0;
         let radial = Vector2::new(centre.x, centre.y).try_normalize(1e-9).unwrap_or_else(Vector2::zeros);
         // |n| is twice the area: the radial component is area-weighted as it stands.
-        *region_radial.entry(roots[face]).or_default() += n.x * radial.x + n.y * radial.y;
-        *region_area.entry(roots[face]).or_default() += n.norm();
+        region_radial[roots[face]] += n.x * radial.x + n.y * radial.y;
+        region_area[roots[face]] += n.norm();
     }
-    let largest = region_area.values().copied().fold(0.0, f64::max);
+    let largest = region_area.iter().copied().fold(0.0, f64::max);
     let region_skin = |region: usize| -> Option<Skin> {
-        let area = region_area[&region];
-        let radial = region_radial[&region] / area.max(1e-300);
+        let area = region_area[region];
+        let radial = region_radial[region] / area.max(1e-300);
         if area < MIN_SKIN_REGION_SHARE * largest || radial.abs() < 0.2 {
             return None;
         }
