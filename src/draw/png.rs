@@ -3,8 +3,10 @@
 //! 100% gives the publication scale.
 
 use tiny_skia::{
-    FillRule, FilterQuality, LineCap, LineJoin, Paint, PathBuilder, Pixmap, PixmapPaint, Transform,
+    FillRule, FilterQuality, LineCap, LineJoin, Paint, PathBuilder, Pixmap, PixmapMut, PixmapPaint, Transform,
 };
+
+use rayon::prelude::*;
 
 use crate::draw::font;
 use crate::draw::model::{Anchor, Drawing, Element, Group, Path, Rgb, Segment, Stroke};
@@ -34,6 +36,11 @@ pub fn encode_pixmap(pixmap: &Pixmap, dpi: Option<f64>) -> Result<Vec<u8>> {
 }
 
 /// The drawing rendered at `dpi` (premultiplied RGBA pixmap).
+///
+/// The page is cut into horizontal bands rendered in parallel, each straight into its rows
+/// of the one pixmap; a band is given only the subpaths and dots whose bounds reach it, so
+/// the thousands of short crease strokes of a linear drawing are rasterized once, not once
+/// per band.
 pub fn render(drawing: &Drawing, dpi: f64) -> Result<Pixmap> {
     if !(dpi.is_finite() && dpi > 0.0) {
         return Err(Error::InvalidArgument(format!("resolution must be a positive number of dpi, got {dpi}")));
@@ -46,21 +53,57 @@ pub fn render(drawing: &Drawing, dpi: f64) -> Result<Pixmap> {
     }
     let mut pixmap = Pixmap::new(width, height).ok_or_else(|| Error::InvalidArgument("empty image".into()))?;
     pixmap.fill(tiny_skia::Color::WHITE);
-    let transform = Transform::from_scale((dpi / 25.4) as f32, (dpi / 25.4) as f32);
-    for layer in &drawing.layers {
-        draw_group(&mut pixmap, layer, transform)?;
-    }
+    let pixels_per_mm = (dpi / 25.4) as f32;
+    // A few bands per thread balance the uneven work (the views are not spread evenly over
+    // the page); each band at least 64 rows so the per-band culling stays cheap.
+    let band_count = (rayon::current_num_threads() * 4).min(height as usize / 64).max(1);
+    let band_rows = (height as usize).div_ceil(band_count);
+    let row_bytes = width as usize * 4;
+    pixmap.data_mut().par_chunks_mut(band_rows * row_bytes).enumerate().try_for_each(|(band, bytes)| {
+        let rows = (bytes.len() / row_bytes) as u32;
+        let mut target = PixmapMut::from_bytes(bytes, width, rows)
+            .ok_or_else(|| Error::InvalidArgument("empty image band".into()))?;
+        let top_px = (band * band_rows) as f32;
+        let band = Band { top_mm: top_px / pixels_per_mm, bottom_mm: (top_px + rows as f32) / pixels_per_mm };
+        let transform = Transform::from_scale(pixels_per_mm, pixels_per_mm).post_translate(0.0, -top_px);
+        for layer in &drawing.layers {
+            draw_group(&mut target, layer, transform, band)?;
+        }
+        Ok(())
+    })?;
     Ok(pixmap)
 }
 
-fn draw_group(pixmap: &mut Pixmap, group: &Group, transform: Transform) -> Result<()> {
+/// The page rows of one band, in millimetres from the top.
+#[derive(Clone, Copy)]
+struct Band {
+    top_mm: f32,
+    bottom_mm: f32,
+}
+
+impl Band {
+    /// True when something spanning `low..=high` (mm), widened by `margin_mm`, reaches
+    /// the band.
+    fn reaches(&self, low: f32, high: f32, margin_mm: f32) -> bool {
+        high + margin_mm >= self.top_mm && low - margin_mm <= self.bottom_mm
+    }
+}
+
+/// Half a pixel of anti-aliasing at any resolution above 50 dpi, in millimetres.
+const ANTIALIAS_MARGIN_MM: f32 = 0.5;
+
+fn draw_group(pixmap: &mut PixmapMut, group: &Group, transform: Transform, band: Band) -> Result<()> {
     for element in &group.children {
         match element {
-            Element::Path(path) => draw_path(pixmap, path, transform),
+            Element::Path(path) => draw_path(pixmap, path, transform, band),
             Element::Dots(dots) => {
+                let radius = dots.radius_mm as f32;
                 let mut builder = PathBuilder::new();
                 for c in &dots.centers {
-                    builder.push_circle(c[0] as f32, c[1] as f32, dots.radius_mm as f32);
+                    let y = c[1] as f32;
+                    if band.reaches(y, y, radius + ANTIALIAS_MARGIN_MM) {
+                        builder.push_circle(c[0] as f32, y, radius);
+                    }
                 }
                 if let Some(path) = builder.finish() {
                     pixmap.fill_path(&path, &paint(dots.color), FillRule::Winding, transform, None);
@@ -75,10 +118,14 @@ fn draw_group(pixmap: &mut Pixmap, group: &Group, transform: Transform) -> Resul
                 };
                 let stroke = Stroke { color: text.color, width_mm: text.size_mm * 0.08, dash_mm: vec![] };
                 for line in font::text_strokes(&text.content, text.size_mm, [x, text.position[1]]) {
-                    draw_path(pixmap, &Path::polyline(&line, false, None, Some(stroke.clone())), transform);
+                    draw_path(pixmap, &Path::polyline(&line, false, None, Some(stroke.clone())), transform, band);
                 }
             }
             Element::Image(image) => {
+                let (top, bottom) = (image.y_mm as f32, (image.y_mm + image.height_mm) as f32);
+                if !band.reaches(top.min(bottom), top.max(bottom), ANTIALIAS_MARGIN_MM) {
+                    continue;
+                }
                 let mut premultiplied = image.rgba.clone();
                 for px in premultiplied.chunks_exact_mut(4) {
                     let a = px[3] as u16;
@@ -97,21 +144,44 @@ fn draw_group(pixmap: &mut Pixmap, group: &Group, transform: Transform) -> Resul
                 let paint = PixmapPaint { quality: FilterQuality::Bilinear, ..PixmapPaint::default() };
                 pixmap.draw_pixmap(0, 0, source.as_ref(), &paint, placement, None);
             }
-            Element::Group(inner) => draw_group(pixmap, inner, transform)?,
+            Element::Group(inner) => draw_group(pixmap, inner, transform, band)?,
         }
     }
     Ok(())
 }
 
-fn draw_path(pixmap: &mut Pixmap, path: &Path, transform: Transform) {
+/// Draws the subpaths of `path` that reach `band`. A subpath wholly above or below the
+/// band neither covers its pixels nor changes their winding, and dashes restart with each
+/// subpath, so leaving it out changes nothing in the band.
+fn draw_path(pixmap: &mut PixmapMut, path: &Path, transform: Transform, band: Band) {
+    let margin_mm = path.stroke.as_ref().map_or(0.0, |s| s.width_mm as f32) + ANTIALIAS_MARGIN_MM;
     let mut builder = PathBuilder::new();
-    for segment in &path.segments {
-        match *segment {
-            Segment::MoveTo(p) => builder.move_to(p[0] as f32, p[1] as f32),
-            Segment::LineTo(p) => builder.line_to(p[0] as f32, p[1] as f32),
-            Segment::Close => builder.close(),
+    let mut subpath: Vec<Segment> = Vec::new();
+    let flush = |subpath: &mut Vec<Segment>, builder: &mut PathBuilder| {
+        let (mut low, mut high) = (f32::INFINITY, f32::NEG_INFINITY);
+        for segment in subpath.iter() {
+            if let Segment::MoveTo(p) | Segment::LineTo(p) = segment {
+                (low, high) = (low.min(p[1] as f32), high.max(p[1] as f32));
+            }
         }
+        if band.reaches(low, high, margin_mm) {
+            for segment in subpath.iter() {
+                match *segment {
+                    Segment::MoveTo(p) => builder.move_to(p[0] as f32, p[1] as f32),
+                    Segment::LineTo(p) => builder.line_to(p[0] as f32, p[1] as f32),
+                    Segment::Close => builder.close(),
+                }
+            }
+        }
+        subpath.clear();
+    };
+    for segment in &path.segments {
+        if matches!(segment, Segment::MoveTo(_)) && !subpath.is_empty() {
+            flush(&mut subpath, &mut builder);
+        }
+        subpath.push(*segment);
     }
+    flush(&mut subpath, &mut builder);
     let Some(skia_path) = builder.finish() else { return };
     if let Some(color) = path.fill {
         pixmap.fill_path(&skia_path, &paint(color), FillRule::EvenOdd, transform, None);
