@@ -12,7 +12,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::section::{most_informative_angle, oriented_frame, profile_section};
-use crate::mesh::{Mesh, Point};
+use crate::mesh::{planar_length, Mesh, Point};
 use crate::orient::Axis;
 use crate::refine::sections::{quantile, sector_angle_rad, vertical_sections, PreparedSurface, Skin, Surface};
 use crate::refine::tangent::Edge;
@@ -122,7 +122,7 @@ fn edge_radius(oriented: &[Point], outer_skin: &[bool], edge: Edge) -> Option<f6
         .iter()
         .filter(|indices| indices.iter().any(|&i| oriented[i].z > wall_from))
         .filter_map(|indices| {
-            let radius = |p: &Point| p.x.hypot(p.y);
+            let radius = |p: &Point| planar_length(p.x, p.y);
             match edge {
                 Edge::Rim => indices
                     .iter()
@@ -168,7 +168,7 @@ fn reaches_base_edge(oriented: &[Point]) -> bool {
 /// The height above which a vertex belongs to the wall, not the floor: [`EDGE_BAND_MM`]
 /// above the floor's inner face (the highest point at the innermost radius).
 fn wall_height(oriented: &[Point]) -> f64 {
-    let radius = |p: &Point| p.x.hypot(p.y);
+    let radius = |p: &Point| planar_length(p.x, p.y);
     let innermost = oriented.iter().map(radius).fold(f64::INFINITY, f64::min);
     let floor_top = oriented.iter().filter(|p| radius(p) <= innermost + EDGE_BAND_MM).map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
     floor_top + EDGE_BAND_MM

@@ -14,7 +14,7 @@ use std::path::Path;
 use nalgebra::Isometry3;
 use rayon::prelude::*;
 
-use crate::mesh::{Mesh, Point};
+use crate::mesh::{planar_length, Mesh, Point};
 use crate::orient::Axis;
 use crate::{Error, Result};
 
@@ -374,7 +374,7 @@ fn chain_segments(segments: &[Segment]) -> Vec<ProfileCurve> {
 }
 
 fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
-    (a[0] - b[0]).hypot(a[1] - b[1])
+    planar_length(a[0] - b[0], a[1] - b[1])
 }
 
 /// Shoelace area of a polygon given by its vertices (closing edge implied).

@@ -8,6 +8,8 @@
 //! is biased towards small radii; Taubin's is nearly unbiased and is the start the
 //! geometric fit needs to converge on such arcs.
 
+use crate::mesh::planar_length;
+
 /// A circle in the plane.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Circle {
@@ -20,7 +22,7 @@ pub struct Circle {
 impl Circle {
     /// Geometric distance of `p` to the circle (signed: positive outside).
     pub fn signed_distance(&self, p: [f64; 2]) -> f64 {
-        (p[0] - self.center[0]).hypot(p[1] - self.center[1]) - self.radius_mm
+        planar_length(p[0] - self.center[0], p[1] - self.center[1]) - self.radius_mm
     }
 
     /// Root mean square geometric distance of the points to the circle.
@@ -165,7 +167,7 @@ pub fn fit_pratt(points: &[[f64; 2]]) -> Option<Circle> {
     let center = m.circle_for_root(Moments::newton_root(polynomial, a0))?.center;
     // Pratt's radius follows from its constraint; the mean distance to the centre is
     // the same for exact data and more robust when the root is poorly conditioned.
-    let radius = points.iter().map(|p| (p[0] - center[0]).hypot(p[1] - center[1])).sum::<f64>() / points.len() as f64;
+    let radius = points.iter().map(|p| planar_length(p[0] - center[0], p[1] - center[1])).sum::<f64>() / points.len() as f64;
     radius.is_finite().then_some(Circle { center, radius_mm: radius })
 }
 
@@ -181,7 +183,7 @@ pub fn refine_geometric(points: &[[f64; 2]], start: Circle) -> Circle {
         let mut jtr = nalgebra::Vector3::<f64>::zeros();
         for p in points {
             let (dx, dy) = (p[0] - circle.center[0], p[1] - circle.center[1]);
-            let distance = dx.hypot(dy);
+            let distance = planar_length(dx, dy);
             if distance < 1e-12 {
                 continue;
             }

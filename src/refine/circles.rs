@@ -5,6 +5,7 @@
 
 use super::objective::Objective;
 use super::sections::{quantile, AxisParameters, CandidateFrame, HorizontalSection, PreparedSurface};
+use crate::mesh::planar_length;
 
 /// Sections with fewer points are skipped (the original skips 5 or fewer).
 pub const MIN_SECTION_POINTS: usize = 6;
@@ -35,7 +36,7 @@ const TRIM_FLOOR_MM: f64 = 0.3;
 /// The weighted variance of the distances to the axis of a section's points, after
 /// dropping the outliers.
 pub fn trimmed_variance(section: &HorizontalSection) -> f64 {
-    let radii: Vec<f64> = section.points.iter().map(|p| p[0].hypot(p[1])).collect();
+    let radii: Vec<f64> = section.points.iter().map(|p| planar_length(p[0], p[1])).collect();
     let mut sorted = radii.clone();
     let median = quantile(&mut sorted, 0.5);
     let mut deviations: Vec<f64> = radii.iter().map(|r| (r - median).abs()).collect();

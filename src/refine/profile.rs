@@ -16,7 +16,7 @@ use serde::{Deserialize, Serialize};
 
 use super::objective::Objective;
 use super::sections::{vertical_sections, AxisParameters, CandidateFrame, PreparedSurface, Skin};
-use crate::mesh::Point;
+use crate::mesh::{planar_length, Point};
 
 /// The two forms of the criterion.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -208,7 +208,7 @@ fn profile_points(surface: &PreparedSurface, frame: &CandidateFrame) -> [Vec<(Po
     let mut by_skin: [Vec<(Point, [f64; 2])>; 2] = [Vec::new(), Vec::new()];
     for (p, skin) in surface.skin_points_in(frame) {
         let index = if skin == Skin::Inner { 0 } else { 1 };
-        by_skin[index].push((p, [p.x.hypot(p.y), p.z]));
+        by_skin[index].push((p, [planar_length(p.x, p.y), p.z]));
     }
     by_skin
 }

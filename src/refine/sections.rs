@@ -13,7 +13,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::mesh::topology::{Topology, UnionFind};
-use crate::mesh::{Mesh, Point, Vector};
+use crate::mesh::{planar_length, Mesh, Point, Vector};
 use crate::orient::Axis;
 use crate::{Error, Result};
 
@@ -473,7 +473,7 @@ impl PreparedSurface {
                         let corners = triangle.map(|v| moved[v as usize]);
                         for (index, &h) in heights.iter().enumerate().take(past_crossed).skip(first_crossed) {
                             if let Some((a, b)) = cut_triangle(&corners, h) {
-                                let length = (a[0] - b[0]).hypot(a[1] - b[1]);
+                                let length = planar_length(a[0] - b[0], a[1] - b[1]);
                                 if length > 0.0 {
                                     cuts.push((slot(*skin) + index, [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0], length));
                                 }
@@ -672,7 +672,7 @@ mod tests {
                 let corners = triangle.map(|v| frame.apply(&surface.points[v as usize]));
                 for (index, &h) in surface.section_heights_mm.iter().enumerate() {
                     if let Some((a, b)) = cut_triangle(&corners, h) {
-                        let length = (a[0] - b[0]).hypot(a[1] - b[1]);
+                        let length = planar_length(a[0] - b[0], a[1] - b[1]);
                         if length > 0.0 {
                             cuts.push((slot(*skin) + index, [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0], length));
                         }

@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 use super::objective::{minimize, FreeParameters, Minimum, Objective, SearchSettings};
 use super::circle_fit::{fit_circle, CircleFitMethod};
 use super::sections::{axis_through, vertical_sections, AxisParameters, CandidateFrame, PreparedSurface};
-use crate::mesh::Point;
+use crate::mesh::{planar_length, Point};
 
 /// Which horizontal edge of the vessel the fragment preserves.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -66,7 +66,7 @@ impl SectionCandidates {
             points.iter().map(|(_, p)| p.y).sum::<f64>() / count,
         ];
         let mut reach_mm: Vec<f64> =
-            points.iter().map(|(_, p)| (p.x - centre_xy[0]).hypot(p.y - centre_xy[1])).collect();
+            points.iter().map(|(_, p)| planar_length(p.x - centre_xy[0], p.y - centre_xy[1])).collect();
         for i in (0..reach_mm.len().saturating_sub(1)).rev() {
             reach_mm[i] = reach_mm[i].max(reach_mm[i + 1]);
         }
