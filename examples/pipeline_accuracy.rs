@@ -3,16 +3,16 @@
 //! large synthetic sherds, side by side on the same sherds, in three modes:
 //!
 //! * `full`: refinement and bootstrap on the full-resolution mesh;
-//! * `default`: refinement on the full-resolution mesh, bootstrap on the
-//!   pre-orientation's decimated copy (`PipelineOptions::default()`);
-//! * `decimated`: both on the decimated copy (`refine_max_faces` at its size).
+//! * `full-refine`: refinement on the full-resolution mesh, bootstrap on the
+//!   pre-orientation's decimated copy (`refine_on_full_resolution`);
+//! * `default`: both on the decimated copy (`PipelineOptions::default()`).
 //!
-//! Run: `cargo run --release --example pipeline_accuracy [COUNT] [FACES] [full,default,decimated]`
+//! Run: `cargo run --release --example pipeline_accuracy [COUNT] [FACES] [full,full-refine,default]`
 //! (defaults: 12 sherds of 100,000 faces, seeds 0.., parts cycled rim/body/base, all modes).
 
 use std::time::Instant;
 
-use sherd::orient::{mean_point_distance_mm, OrientOptions};
+use sherd::orient::mean_point_distance_mm;
 use sherd::pipeline::{analyse, PipelineOptions};
 use sherd::refine::RefineOptions;
 use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
@@ -47,7 +47,7 @@ fn main() {
     let count: u64 = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(12);
     let faces: usize = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(100_000);
     let modes: Vec<String> =
-        args.get(3).map(|a| a.split(',').map(str::to_string).collect()).unwrap_or_else(|| ["full", "default", "decimated"].map(String::from).to_vec());
+        args.get(3).map(|a| a.split(',').map(str::to_string).collect()).unwrap_or_else(|| ["full", "full-refine", "default"].map(String::from).to_vec());
     let parts = [SherdPart::Rim, SherdPart::Body, SherdPart::Base];
     let mut table: Vec<(String, Vec<Outcome>)> = modes.iter().map(|m| (m.clone(), Vec::new())).collect();
     for seed in 0..count {
@@ -57,7 +57,7 @@ fn main() {
         for (mode, outcomes) in &mut table {
             let options = PipelineOptions {
                 refine: Some(RefineOptions::default()),
-                refine_max_faces: (mode == "decimated").then_some(2 * OrientOptions::default().target_vertex_count),
+                refine_on_full_resolution: mode != "default",
                 bootstrap_on_full_resolution: mode == "full",
                 ..Default::default()
             };

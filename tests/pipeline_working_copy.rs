@@ -1,10 +1,11 @@
-//! The pipeline's decimated copy of a large scan: the pre-orientation and the bootstrap
-//! of the intervals work on it, the refinement only when `refine_max_faces` asks, and the
-//! measurements never (they are taken on the full-resolution mesh).
+//! The pipeline's decimated copy of a large scan: the pre-orientation, the refinement and
+//! the bootstrap of the intervals work on it (the refinement on the full mesh when
+//! `refine_on_full_resolution` asks), and the measurements never (they are taken on the
+//! full-resolution mesh).
 
 use sherd::orient::{decimated_copy, OrientOptions};
 use sherd::pipeline::{analyse, PipelineOptions};
-use sherd::refine::{refine, RefineOptions};
+use sherd::refine::{refine, Criterion, RefineOptions};
 use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
 
 fn options() -> PipelineOptions {
@@ -12,7 +13,7 @@ fn options() -> PipelineOptions {
 }
 
 #[test]
-fn refinement_and_measurements_use_the_full_mesh_and_the_bootstrap_the_copy() {
+fn pre_orientation_and_bootstrap_use_the_copy_and_measurements_the_full_mesh() {
     // A rim piece of ~50k faces, more than the 20k-face working copy.
     let sherd = synthetic_sherd(0, &SherdOptions { target_faces: 50_000, ..SherdOptions::for_part(SherdPart::Rim) });
     let copy_faces = 2 * OrientOptions::default().target_vertex_count;
@@ -21,23 +22,22 @@ fn refinement_and_measurements_use_the_full_mesh_and_the_bootstrap_the_copy() {
     let default = analyse(sherd.mesh.clone(), &options()).unwrap();
     assert!(default.is_oriented(), "{:?}", default.orientation.verdict);
     let full_bootstrap = analyse(sherd.mesh.clone(), &PipelineOptions { bootstrap_on_full_resolution: true, ..options() }).unwrap();
-    let on_copy = analyse(sherd.mesh.clone(), &PipelineOptions { refine_max_faces: Some(copy_faces), ..options() }).unwrap();
+    let full_refine = analyse(sherd.mesh.clone(), &PipelineOptions { refine_on_full_resolution: true, ..options() }).unwrap();
 
     // The pre-orientation works on the copy whatever the options.
-    assert_eq!(default.orientation.report.working_vertex_count, on_copy.orientation.report.working_vertex_count);
+    assert_eq!(default.orientation.report.working_vertex_count, full_refine.orientation.report.working_vertex_count);
     assert!(default.orientation.report.working_vertex_count < default.mesh.vertex_count() / 2);
     assert_eq!(default.orientation.axis, full_bootstrap.orientation.axis);
+    assert_eq!(default.orientation.axis, full_refine.orientation.axis);
 
-    // By default the refinement runs on the full mesh: the same axis as when everything
-    // does, and as refining the repaired mesh directly.
+    // By default the refinement runs on the copy (the tangent plane on the full mesh):
+    // the same axis as refining that mesh directly, whatever the bootstrap does.
     assert_eq!(default.axis(), full_bootstrap.axis());
+    assert_refined_on_the_mesh_its_criterion_wants(&default);
+    // Asked to, it runs on the full mesh.
     let start = &default.orientation.axis;
-    assert_eq!(&refine(&default.mesh, start, &RefineOptions::default()).unwrap().axis, default.axis());
-    // Asked to, it runs on the copy.
-    let copy = decimated_copy(&on_copy.mesh, &OrientOptions::default()).unwrap().expect("a copy of a 50k-face mesh");
-    assert_eq!(copy.face_count(), copy_faces);
-    assert_eq!(&refine(&copy, start, &RefineOptions::default()).unwrap().axis, on_copy.axis());
-    let apart_deg = on_copy.axis().line_angle_to_deg(default.axis());
+    assert_eq!(&refine(&full_refine.mesh, start, &RefineOptions::default()).unwrap().axis, full_refine.axis());
+    let apart_deg = full_refine.axis().line_angle_to_deg(default.axis());
     assert!(apart_deg < 1.0, "refined on the copy {apart_deg} deg from the full-resolution refinement");
 
     // The measurements are taken on the full mesh: only the intervals depend on where the
@@ -50,6 +50,33 @@ fn refinement_and_measurements_use_the_full_mesh_and_the_bootstrap_the_copy() {
     let (interval, interval_full) = (m.axis_angle_interval_deg.unwrap(), m_full.axis_angle_interval_deg.unwrap());
     assert!(interval[1] > 0.0 && interval_full[1] > 0.0, "{interval:?} {interval_full:?}");
 }
+
+/// The circles criterion refines on the 20k-face copy, the tangent plane on the full mesh.
+fn assert_refined_on_the_mesh_its_criterion_wants(analysis: &sherd::pipeline::Analysis) -> Criterion {
+    let refinement = analysis.refinement.as_ref().expect("refined");
+    let method = refinement.report.method;
+    let copy = decimated_copy(&analysis.mesh, &OrientOptions::default()).unwrap().expect("a copy of a 50k-face mesh");
+    let wanted = if method == Criterion::Tangent { &analysis.mesh } else { &copy };
+    let start = &analysis.orientation.axis;
+    assert_eq!(refine(wanted, start, &RefineOptions::default()).unwrap().axis, refinement.axis, "{method:?}");
+    method
+}
+
+#[test]
+fn a_body_sherd_is_refined_on_the_copy_and_a_rim_on_the_full_mesh() {
+    let methods: Vec<Criterion> = [SherdPart::Body, SherdPart::Rim]
+        .into_iter()
+        .map(|part| {
+            let sherd = synthetic_sherd(BODY_AND_RIM_SEED, &SherdOptions { target_faces: 50_000, ..SherdOptions::for_part(part) });
+            assert_refined_on_the_mesh_its_criterion_wants(&analyse(sherd.mesh, &options()).unwrap())
+        })
+        .collect();
+    assert_eq!(methods, [Criterion::Circles, Criterion::Tangent], "both criteria, so both meshes, are checked");
+}
+
+/// A seed whose body piece is refined by the circles criterion and rim piece by the
+/// tangent plane.
+const BODY_AND_RIM_SEED: u64 = 1;
 
 /// A sherd whose axis line is found but not which way is up (synthetic_sherd 30, a body
 /// piece): the record says `sense_uncertain` with the reason, and still carries the axis
