@@ -351,26 +351,31 @@ pub fn refine_candidates(lines: &CenteredLines, candidates: &[Vector], options: 
         .collect();
     let scale = scales.iter().copied().filter(|s| *s > 0.0).fold(f64::INFINITY, f64::min);
     let scale = if scale.is_finite() { scale } else { 1e-12 };
-    let mut results: Vec<(Vector, Vector, f64, Vec<f64>)> = Vec::new();
-    for start in candidates {
-        let mut direction = *start;
-        let mut point = problem.solve_point(&direction).0;
-        for round in 0..options.m_step_rounds {
-            let robust = m_step_weights(&problem.residuals(&point, &direction), scale);
-            problem.weights = subset_prior.iter().zip(&robust).map(|(p, r)| p * r).collect();
-            let step = if round == 0 { 0.05 } else { 0.01 };
-            let (next, _) = problem.search(&direction, step, if round == 0 { 100 } else { 50 });
-            let moved = next.dot(&direction).abs().min(1.0).acos();
-            direction = next;
-            point = problem.solve_point(&direction).0;
-            if moved < 1e-5 {
-                break;
+    // The candidates are refined independently, one per core, each with its own weights;
+    // collected in their order, so the result is the same as one after the other.
+    let mut results: Vec<(Vector, Vector, f64, Vec<f64>)> = candidates
+        .par_iter()
+        .map(|start| {
+            let mut problem = HalirProblem { weights: problem.weights.clone(), indices: problem.indices.clone(), ..problem };
+            let mut direction = *start;
+            let mut point = problem.solve_point(&direction).0;
+            for round in 0..options.m_step_rounds {
+                let robust = m_step_weights(&problem.residuals(&point, &direction), scale);
+                problem.weights = subset_prior.iter().zip(&robust).map(|(p, r)| p * r).collect();
+                let step = if round == 0 { 0.05 } else { 0.01 };
+                let (next, _) = problem.search(&direction, step, if round == 0 { 100 } else { 50 });
+                let moved = next.dot(&direction).abs().min(1.0).acos();
+                direction = next;
+                point = problem.solve_point(&direction).0;
+                if moved < 1e-5 {
+                    break;
+                }
             }
-        }
-        let residuals = problem.residuals(&point, &direction);
-        let cost = m_step_cost(&residuals, &subset_prior, scale);
-        results.push((direction, point, cost, residuals));
-    }
+            let residuals = problem.residuals(&point, &direction);
+            let cost = m_step_cost(&residuals, &subset_prior, scale);
+            (direction, point, cost, residuals)
+        })
+        .collect();
     results.sort_by(|a, b| a.2.total_cmp(&b.2));
     let alternatives: Vec<(Vector, f64)> = results.iter().map(|r| (r.0, r.2)).collect();
     let (direction, point, cost, residuals) = results.swap_remove(0);
