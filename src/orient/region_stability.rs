@@ -36,6 +36,10 @@ pub const REGION_COUNT: usize = 6;
 /// the right ones of small pieces alone (their turns reach 4-5 degrees).
 pub const MAX_REGION_TURN_DEG: f64 = 6.5;
 
+/// Cosine of the angle (1 degree) within which two refined candidates are one start for
+/// the refits.
+const SAME_START_COS: f64 = 0.999_847_695;
+
 /// What leaving out one region at a time did to the axis.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct RegionStability {
@@ -151,11 +155,15 @@ pub fn leave_one_region_out(
     options: &HalirOptions,
 ) -> RegionStability {
     let labels = region_labels(lines, &fit.point, &fit.direction, REGION_COUNT);
-    let mut starts: Vec<Vector> = fit
-        .alternatives
-        .iter()
-        .map(|(direction, _)| *direction)
-        .collect();
+    // Candidates that converged to one direction would give one refit: start from the
+    // cheapest of each (the alternatives come cheapest first).
+    let mut starts: Vec<Vector> = Vec::new();
+    for (direction, _) in &fit.alternatives {
+        let close = |kept: &Vector| kept.normalize().dot(&direction.normalize()).abs() >= SAME_START_COS;
+        if !starts.iter().any(close) {
+            starts.push(*direction);
+        }
+    }
     if starts.is_empty() {
         starts.push(fit.direction);
     }
