@@ -166,15 +166,23 @@ pub fn orient_automatic(mesh: &Mesh, options: &OrientOptions) -> Result<Orientat
 }
 
 /// The decimated copy of `mesh` the automatic pre-orientation works on, before it is
-/// smoothed: about two faces per wanted vertex (quadric edge collapse). `None` when the
-/// mesh is a point cloud or has no more faces than that already. The pipeline refines
+/// smoothed: about two faces per wanted vertex (quadric edge collapse), or the mesh itself
+/// when it has at most a quarter more faces than that. `None` when the mesh is a point
+/// cloud or has no more faces than that already (it is then not smoothed either). The pipeline refines
 /// and bootstraps on the same copy, so that a large scan is decimated once.
 pub fn decimated_copy(mesh: &Mesh, options: &OrientOptions) -> Result<Option<Mesh>> {
     check_options(options)?;
-    if mesh.is_point_cloud() || mesh.face_count() <= 2 * options.target_vertex_count {
+    let target_faces = 2 * options.target_vertex_count;
+    if mesh.is_point_cloud() || mesh.face_count() <= target_faces {
         return Ok(None);
     }
-    crate::mesh::decimate::decimate_shape(mesh, 2 * options.target_vertex_count).map(Some)
+    // Within a quarter of the working size, the mesh is its own working copy (still
+    // smoothed): collapsing the last few percent of faces changes nothing the axis
+    // depends on and cost as much as the rest of a 10k-vertex orientation's fit.
+    if mesh.face_count() * 4 <= target_faces * 5 {
+        return Ok(Some(mesh.clone()));
+    }
+    crate::mesh::decimate::decimate_shape(mesh, target_faces).map(Some)
 }
 
 /// [`orient_automatic`] given `decimated`, the [`decimated_copy`] of `mesh` with the same
