@@ -330,6 +330,20 @@ pub(crate) fn place_by_circles(
     tilted: AxisParameters,
     settings: &SearchSettings,
 ) -> Option<(AxisParameters, u64)> {
+    place_with(circles, tilted, |tilted| {
+        minimize(circles, tilted, &SearchSettings { free: FreeParameters::ShiftsOnly, ..*settings })
+            .ok()
+            .map(|placed| (placed.parameters, placed.iterations))
+    })
+}
+
+/// [`place_by_circles`] with the two shifts found by `place` instead of a Nelder-Mead
+/// search (the bootstrap places its resamples by Newton steps), under the same conditions.
+pub(crate) fn place_with(
+    circles: &circles::CirclesObjective,
+    tilted: AxisParameters,
+    place: impl FnOnce(AxisParameters) -> Option<(AxisParameters, u64)>,
+) -> Option<(AxisParameters, u64)> {
     let usable_sections = circles
         .surface
         .horizontal_sections(&sections::CandidateFrame::new(&tilted))
@@ -339,8 +353,8 @@ pub(crate) fn place_by_circles(
     if usable_sections < MIN_PLACING_SECTIONS {
         return None;
     }
-    let placed = minimize(circles, tilted, &SearchSettings { free: FreeParameters::ShiftsOnly, ..*settings }).ok()?;
-    (radial_curvature(circles, &placed.parameters) >= MIN_PLACING_CURVATURE).then_some((placed.parameters, placed.iterations))
+    let (placed, iterations) = place(tilted)?;
+    (radial_curvature(circles, &placed) >= MIN_PLACING_CURVATURE).then_some((placed, iterations))
 }
 
 /// The relative rise of Eq. 2 when the axis `p` moves [`PLACING_PROBE_MM`] towards and
@@ -364,7 +378,7 @@ const PLACING_PROBE_MM: f64 = 2.0;
 /// Least relative rise of Eq. 2 over that move for the placement to count. On the
 /// synthetic corpus (3 vessels, `REFINE_ACCURACY_DUMP`) placements that wandered 5-10 mm
 /// rose 0.04-11-fold, those that brought the axis within 1 mm of the truth 13-900-fold.
-const MIN_PLACING_CURVATURE: f64 = 12.0;
+pub(crate) const MIN_PLACING_CURVATURE: f64 = 12.0;
 
 /// `axis` pointing the same way (base to rim) as `reference`.
 fn orient_like(axis: &Axis, reference: &Axis) -> Axis {
