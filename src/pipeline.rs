@@ -14,7 +14,7 @@ use crate::mesh::repair::{repair, RepairOptions, RepairReport};
 use crate::mesh::{Mesh, Point};
 use crate::orient::{decimated_copy, orient_automatic_with_decimated, orient_from_three_points, Axis, AxisRecord, ManualOptions, OrientOptions, Orientation, Verdict};
 use crate::profile::measure::{measure_with_bootstrap_mesh, MeasureOptions, Measurements};
-use crate::refine::{refine, Criterion, RefineOptions, Refinement};
+use crate::refine::{refine, refine_placing_on, Criterion, RefineOptions, Refinement};
 use crate::{Error, Result};
 
 /// What to do with a scan.
@@ -41,8 +41,10 @@ pub struct PipelineOptions {
     /// 200k faces the axes the circles criterion refined on the 20k-face copy were as
     /// close to the truth as on the full mesh (`examples/pipeline_accuracy.rs`: the
     /// vessel's deformation and the noise limit the axis, not the sections' density) at
-    /// a fifth of the time. The tangent plane to a rim or base always runs on the full
-    /// mesh (it rests on a few extreme points), and the measurements always do.
+    /// a fifth of the time. The tangent plane to a rim or base always levels the axis on
+    /// the full mesh (it rests on a few extreme points) and places it by circles on the
+    /// copy ([`crate::refine::refine_placing_on`]); the measurements always run on the
+    /// full mesh.
     pub refine_on_full_resolution: bool,
     /// Bootstrap the intervals on the full-resolution mesh instead of the
     /// pre-orientation's decimated copy. Off by default: the bootstrap refines the axis
@@ -142,10 +144,11 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
             // The tangent plane rests on the few highest (lowest) points of the rim (base),
             // which decimation moves: on 13 rim sherds its axis came out 0.05-0.5 degrees
             // further from the truth on the copy. The circles criterion averages thousands
-            // of section points and is as good on the copy, where it costs a fifth.
+            // of section points and is as good on the copy, where it costs a fifth: so a
+            // rim is levelled on the full mesh and placed by circles on the copy.
             let on_copy = !std::ptr::eq(refine_mesh, &mesh);
             if on_copy && refined.report.method == Criterion::Tangent {
-                Some(refine(&mesh, &orientation.axis, refine_options)?)
+                Some(refine_placing_on(&mesh, refine_mesh, &orientation.axis, refine_options)?)
             } else {
                 Some(refined)
             }

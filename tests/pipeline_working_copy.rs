@@ -1,11 +1,11 @@
 //! The pipeline's decimated copy of a large scan: the pre-orientation, the refinement and
 //! the bootstrap of the intervals work on it (the refinement on the full mesh when
-//! `refine_on_full_resolution` asks), and the measurements never (they are taken on the
-//! full-resolution mesh).
+//! `refine_on_full_resolution` asks; the tangent plane levels on the full mesh and places
+//! on the copy), and the measurements never (they are taken on the full-resolution mesh).
 
 use sherd::orient::{decimated_copy, OrientOptions};
 use sherd::pipeline::{analyse, PipelineOptions};
-use sherd::refine::{refine, Criterion, RefineOptions};
+use sherd::refine::{refine, refine_placing_on, Criterion, RefineOptions};
 use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
 
 fn options() -> PipelineOptions {
@@ -51,14 +51,31 @@ fn pre_orientation_and_bootstrap_use_the_copy_and_measurements_the_full_mesh() {
     assert!(interval[1] > 0.0 && interval_full[1] > 0.0, "{interval:?} {interval_full:?}");
 }
 
-/// The circles criterion refines on the 20k-face copy, the tangent plane on the full mesh.
+/// The circles criterion refines on the 20k-face copy; the tangent plane levels the rim
+/// on the full mesh and places it by circles on the copy, within a few hundredths of a
+/// millimetre of where the full mesh places it.
 fn assert_refined_on_the_mesh_its_criterion_wants(analysis: &sherd::pipeline::Analysis) -> Criterion {
     let refinement = analysis.refinement.as_ref().expect("refined");
     let method = refinement.report.method;
     let copy = decimated_copy(&analysis.mesh, &OrientOptions::default()).unwrap().expect("a copy of a 50k-face mesh");
-    let wanted = if method == Criterion::Tangent { &analysis.mesh } else { &copy };
     let start = &analysis.orientation.axis;
-    assert_eq!(refine(wanted, start, &RefineOptions::default()).unwrap().axis, refinement.axis, "{method:?}");
+    if method == Criterion::Tangent {
+        let expected = refine_placing_on(&analysis.mesh, &copy, start, &RefineOptions::default()).unwrap();
+        assert_eq!(expected.axis, refinement.axis);
+        let on_full_mesh = refine(&analysis.mesh, start, &RefineOptions::default()).unwrap().axis;
+        // The same direction, to the rounding of the placement's round trip through the
+        // copy's own frame.
+        let turned_deg = on_full_mesh.line_angle_to_deg(&refinement.axis);
+        assert!(turned_deg < 1e-9, "levelled on the full mesh: {turned_deg} deg apart");
+        let centroid = analysis.mesh.centroid().expect("a centroid");
+        let apart_mm = (on_full_mesh.closest_point(&centroid) - refinement.axis.closest_point(&centroid)).norm();
+        let unplaced = refine(&analysis.mesh, start, &RefineOptions { tangent_places_by_circles: false, ..Default::default() }).unwrap().axis;
+        let placing_moved_mm = (unplaced.closest_point(&centroid) - on_full_mesh.closest_point(&centroid)).norm();
+        assert!(placing_moved_mm > 0.1, "the placement moved the axis {placing_moved_mm} mm: nothing to compare");
+        assert!(apart_mm < 0.05, "placed {apart_mm} mm from the full mesh's placement");
+    } else {
+        assert_eq!(refine(&copy, start, &RefineOptions::default()).unwrap().axis, refinement.axis, "{method:?}");
+    }
     method
 }
 
