@@ -14,7 +14,7 @@ use crate::mesh::repair::{repair, RepairOptions, RepairReport};
 use crate::mesh::{Mesh, Point};
 use crate::orient::{decimated_copy, orient_automatic_with_decimated, orient_from_three_points, Axis, AxisRecord, ManualOptions, OrientOptions, Orientation, Verdict};
 use crate::profile::measure::{measure_with_bootstrap_mesh, MeasureOptions, Measurements};
-use crate::refine::{refine, refine_placing_on, Criterion, RefineOptions, Refinement};
+use crate::refine::{chosen_criterion, refine, refine_placing_on, Criterion, RefineOptions, Refinement};
 use crate::{Error, Result};
 
 /// What to do with a scan.
@@ -140,17 +140,16 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
     let clock = Instant::now();
     let refinement = match (&options.refine, has_line) {
         (Some(refine_options), true) => {
-            let refined = refine(refine_mesh, &orientation.axis, refine_options)?;
             // The tangent plane rests on the few highest (lowest) points of the rim (base),
             // which decimation moves: on 13 rim sherds its axis came out 0.05-0.5 degrees
             // further from the truth on the copy. The circles criterion averages thousands
             // of section points and is as good on the copy, where it costs a fifth: so a
             // rim is levelled on the full mesh and placed by circles on the copy.
             let on_copy = !std::ptr::eq(refine_mesh, &mesh);
-            if on_copy && refined.report.method == Criterion::Tangent {
+            if on_copy && chosen_criterion(refine_mesh, &orientation.axis, refine_options)? == Criterion::Tangent {
                 Some(refine_placing_on(&mesh, refine_mesh, &orientation.axis, refine_options)?)
             } else {
-                Some(refined)
+                Some(refine(refine_mesh, &orientation.axis, refine_options)?)
             }
         }
         _ => None,

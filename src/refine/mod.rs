@@ -418,6 +418,15 @@ fn run_guarded<O: Objective>(
     }
 }
 
+/// The criterion [`refine`] would run on `mesh` from `axis` (the one of `options`, or
+/// the one `Criterion::Auto` picks: the tangent plane where a level rim or base is
+/// preserved, the circles otherwise), without running it.
+pub fn chosen_criterion(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Result<Criterion> {
+    validate(mesh, axis, options)?;
+    let surface = PreparedSurface::new(mesh, axis, options.surface, options.section_count)?;
+    Ok(choose_criterion(&surface, options).0)
+}
+
 /// The criterion to run, why, and the edge for the tangent criterion.
 pub(crate) fn choose_criterion(surface: &PreparedSurface, options: &RefineOptions) -> (Criterion, String, Option<Edge>) {
     let detect = || detect_edges(surface, options).into_iter().min_by(|a, b| a.spread_mm.total_cmp(&b.spread_mm));
