@@ -505,7 +505,7 @@ fn hatch_lines(polygons: &[Vec<[f64; 2]>], spacing: f64) -> Vec<[[f64; 2]; 2]> {
                 }
             }
         }
-        crossings.sort_by(f64::total_cmp);
+        crossings.sort_unstable_by(f64::total_cmp);
         for pair in crossings.chunks_exact(2) {
             let point = |v: f64| [(u + v) / 2.0, (v - u) / 2.0];
             segments.push([point(pair[0]), point(pair[1])]);

@@ -178,7 +178,7 @@ fn quantile(values: &mut [f64], q: f64) -> f64 {
     if values.is_empty() {
         return f64::NAN;
     }
-    values.sort_by(f64::total_cmp);
+    values.sort_unstable_by(f64::total_cmp);
     values[((values.len() - 1) as f64 * q).round() as usize]
 }
 

@@ -170,7 +170,7 @@ pub fn profile_ends(points: &[Point], axis: &Axis) -> Option<ProfileEnds> {
     }
     let (low, high) = samples.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), s| (lo.min(s.angle), hi.max(s.angle)));
     let mut radii: Vec<f64> = samples.iter().map(|s| s.radius).collect();
-    radii.sort_by(f64::total_cmp);
+    radii.sort_unstable_by(f64::total_cmp);
     let median_radius = radii[radii.len() / 2];
     let max_radius_mm = radii[radii.len() - 1];
     let span = (high - low).max(1e-9);
@@ -434,7 +434,7 @@ fn combine(cues: SenseCues, level_text: String) -> DirectionEvidence {
 
 fn median(values: &[f64]) -> f64 {
     let mut sorted = values.to_vec();
-    sorted.sort_by(f64::total_cmp);
+    sorted.sort_unstable_by(f64::total_cmp);
     sorted[sorted.len() / 2]
 }
 

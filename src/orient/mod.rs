@@ -250,7 +250,7 @@ pub fn orient_automatic_with_decimated(mesh: &Mesh, decimated: Option<&Mesh>, op
     report.sense_cues = evidence.cues;
     axis = axis.normalized(&lines.centroid());
     let mut radii: Vec<f64> = lines.points.iter().map(|p| axis.distance_to(p)).collect();
-    radii.sort_by(f64::total_cmp);
+    radii.sort_unstable_by(f64::total_cmp);
     report.median_radius_mm = radii[radii.len() / 2];
     report.residual_angle_deg = verdict::axis_residual_angle_deg(&lines, &axis, &inliers);
     report.sphere_residual_angle_deg = verdict::sphere_residual_angle_deg(&lines, &inliers);

@@ -62,7 +62,7 @@ where
         };
     }
     let median = |values: &mut Vec<f64>| {
-        values.sort_by(f64::total_cmp);
+        values.sort_unstable_by(f64::total_cmp);
         values[values.len() / 2]
     };
     let median_deviation = median(&mut deviations);

@@ -81,7 +81,7 @@ pub fn pertinent_mask(lines: &NormalLines, axis: &Axis, options: &SegmentOptions
     let distances: Vec<f64> =
         (0..lines.len()).map(|i| normal_line_distance(axis, &lines.points[i], &lines.directions[i])).collect();
     let mut sorted = distances.clone();
-    sorted.sort_by(f64::total_cmp);
+    sorted.sort_unstable_by(f64::total_cmp);
     if sorted.is_empty() {
         return Vec::new();
     }
@@ -92,7 +92,7 @@ pub fn pertinent_mask(lines: &NormalLines, axis: &Axis, options: &SegmentOptions
         limit
     } else {
         let mut radii: Vec<f64> = lines.points.iter().map(|p| axis.distance_to(p)).collect();
-        radii.sort_by(f64::total_cmp);
+        radii.sort_unstable_by(f64::total_cmp);
         (3.0 * sorted[sorted.len() / 2]).max(0.005 * radii[radii.len() / 2])
     };
     distances.iter().map(|d| *d <= threshold).collect()

@@ -185,7 +185,7 @@ fn crossings(outlines: &[Vec<[f64; 2]>], z: f64) -> Vec<f64> {
             }
         }
     }
-    found.sort_by(f64::total_cmp);
+    found.sort_unstable_by(f64::total_cmp);
     found
 }
 

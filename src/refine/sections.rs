@@ -134,7 +134,7 @@ pub fn sector_angle_rad(mut angles: Vec<f64>) -> f64 {
     if angles.len() < 2 {
         return 0.0;
     }
-    angles.sort_by(f64::total_cmp);
+    angles.sort_unstable_by(f64::total_cmp);
     let wrap_gap = angles[0] + std::f64::consts::TAU - angles[angles.len() - 1];
     let largest_gap = angles.windows(2).map(|w| w[1] - w[0]).fold(wrap_gap, f64::max);
     std::f64::consts::TAU - largest_gap
@@ -594,7 +594,7 @@ pub fn vertical_sections(points: &[Point], count: usize) -> Vec<Vec<usize>> {
     let angles: Vec<f64> = points.iter().map(|p| p.y.atan2(p.x)).collect();
     // Measure angles from the start of the preserved arc so that the arc does not wrap.
     let mut sorted = angles.clone();
-    sorted.sort_by(f64::total_cmp);
+    sorted.sort_unstable_by(f64::total_cmp);
     let mut start = sorted[0];
     let mut largest_gap = sorted[0] + std::f64::consts::TAU - sorted[sorted.len() - 1];
     for w in sorted.windows(2) {
@@ -650,7 +650,7 @@ mod tests {
                 .collect();
             for fraction in [0.0, 0.05, 0.25, 0.5, 0.77, 0.95, 1.0] {
                 let mut sorted = values.clone();
-                sorted.sort_by(f64::total_cmp);
+                sorted.sort_unstable_by(f64::total_cmp);
                 let position = fraction * (length - 1) as f64;
                 let (low, high) = (position.floor() as usize, position.ceil() as usize);
                 let expected = sorted[low] + (sorted[high] - sorted[low]) * (position - low as f64);

@@ -229,7 +229,7 @@ pub fn sector_angle_deg(points: &[Point], axis: &Axis) -> f64 {
     if angles.len() < 2 {
         return 0.0;
     }
-    angles.sort_by(f64::total_cmp);
+    angles.sort_unstable_by(f64::total_cmp);
     let wrap_gap = angles[0] + std::f64::consts::TAU - angles[angles.len() - 1];
     let largest_gap = angles.windows(2).map(|w| w[1] - w[0]).fold(wrap_gap, f64::max);
     (std::f64::consts::TAU - largest_gap).to_degrees()
