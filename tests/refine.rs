@@ -26,7 +26,7 @@ fn fixture(sector_deg: f64, height: f64, lip: bool, ovality: f64) -> Mesh {
         let r = radius(z, theta, inner);
         Point::new(r * theta.cos(), r * theta.sin(), z)
     };
-    let mut grid = |inner: bool, positions: &mut Vec<Point>, triangles: &mut Vec<[u32; 3]>| {
+    let grid = |inner: bool, positions: &mut Vec<Point>, triangles: &mut Vec<[u32; 3]>| {
         let base = positions.len() as u32;
         for i in 0..=rows {
             for j in 0..=columns {
