@@ -347,11 +347,19 @@ pub(crate) fn place_by_circles(
     tilted: AxisParameters,
     settings: &SearchSettings,
 ) -> Option<(AxisParameters, u64)> {
-    place_with(circles, tilted, |tilted| {
-        minimize(circles, tilted, &SearchSettings { free: FreeParameters::ShiftsOnly, ..*settings })
-            .ok()
-            .map(|placed| (placed.parameters, placed.iterations))
-    })
+    place_with(circles, tilted, |tilted| search_shifts(circles, tilted, settings))
+}
+
+/// The two shifts minimising Eq. 2 with the tilts of `tilted` held, by Nelder-Mead, and
+/// the iterations; no test of whether the skins fix them (see [`place_with`]).
+pub(crate) fn search_shifts(
+    circles: &circles::CirclesObjective,
+    tilted: AxisParameters,
+    settings: &SearchSettings,
+) -> Option<(AxisParameters, u64)> {
+    minimize(circles, tilted, &SearchSettings { free: FreeParameters::ShiftsOnly, ..*settings })
+        .ok()
+        .map(|placed| (placed.parameters, placed.iterations))
 }
 
 /// [`place_by_circles`] with the two shifts found by `place` instead of a Nelder-Mead

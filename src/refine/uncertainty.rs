@@ -27,7 +27,7 @@ use super::circles::CirclesObjective;
 use super::objective::{minimize, FreeParameters, Objective, SearchSettings};
 use super::sections::{quantile, AxisParameters, PreparedSurface};
 use super::tangent::TangentObjective;
-use super::{choose_criterion, place_by_circles, place_with, Criterion, RefineOptions};
+use super::{choose_criterion, place_with, search_shifts, Criterion, RefineOptions};
 use crate::mesh::Mesh;
 use crate::Error;
 use crate::orient::Axis;
@@ -178,7 +178,7 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
     let place = |circles: &CirclesObjective, tilted: AxisParameters| {
         place_with(circles, tilted, |tilted| match newton_placement(circles, tilted) {
             Some(placed) => Some((placed, 0)),
-            None => place_by_circles(circles, tilted, &settings),
+            None => search_shifts(circles, tilted, &settings),
         })
     };
     let axes = (0..bootstrap.samples)
