@@ -160,3 +160,32 @@ fn rims_of_finely_meshed_sherds_are_found() {
         assert!((rim - truth).abs() < 0.02 * truth, "seed {seed}: rim radius {rim} vs {truth}");
     }
 }
+
+/// A base whose skins do not fix the axis's radial position (a short arc of a deformed
+/// vessel): the tangent plane levels such an axis but leaves it where the pre-orientation
+/// put it, here 8 mm too near the sherd. The diameter interval must then be as loose as
+/// the position, not a narrow one about the wrong diameter (fragments 9 of vessel 1 and
+/// 13 of vessel 0 of `examples/refine_accuracy.rs`, which the pipeline left 5 and 9 mm
+/// off with intervals of +-5 and +-10 mm, 14 and 19 mm from the truth). Before resamples
+/// went where Eq. 2 takes them, this test's intervals were [84, 93] mm about a true 108.5
+/// and [189, 209] about 219.9.
+#[test]
+fn a_position_the_skins_do_not_fix_gets_a_loose_diameter_interval() {
+    use sherd::synth::{generate_vessel, VesselOptions};
+    for (vessel_seed, fragment) in [(1, 9), (0, 13)] {
+        let vessel = generate_vessel(vessel_seed, &VesselOptions { fragment_count: 34, random_motion: true, ..Default::default() });
+        let sherd = &vessel.fragments[fragment];
+        let truth = &sherd.truth;
+        let true_diameter = truth.base_radius_mm.expect("a base is preserved") * 2.0;
+        // The true axis moved 8 mm towards the sherd, along the line from the axis to the
+        // sherd's centroid: its direction exact, its position off.
+        let centroid = sherd.mesh.positions.iter().fold(Point::origin(), |sum, p| sum + p.coords / sherd.mesh.positions.len() as f64);
+        let towards = (centroid - truth.axis.closest_point(&centroid)).normalize();
+        let off = Axis::new(truth.axis.point + towards * 8.0, truth.axis.direction.into_inner());
+        let m = measure(&sherd.mesh, &off, &MeasureOptions::default());
+        let measured = m.base_diameter_mm.expect("the base is measured");
+        let [low, high] = m.base_diameter_interval_mm.expect("an interval");
+        assert!((measured - true_diameter).abs() > 10.0, "vessel {vessel_seed} fragment {fragment}: the moved axis should misjudge the diameter, {measured:.1} vs {true_diameter:.1}");
+        assert!(low <= true_diameter && true_diameter <= high, "vessel {vessel_seed} fragment {fragment}: true base diameter {true_diameter:.1} mm outside [{low:.1}, {high:.1}] (measured {measured:.1})");
+    }
+}

@@ -369,6 +369,17 @@ pub(crate) fn place_with(
     tilted: AxisParameters,
     place: impl FnOnce(AxisParameters) -> Option<(AxisParameters, u64)>,
 ) -> Option<(AxisParameters, u64)> {
+    let (placed, iterations) = place_where_sections_allow(circles, tilted, place)?;
+    (radial_curvature(circles, &placed) >= MIN_PLACING_CURVATURE).then_some((placed, iterations))
+}
+
+/// The two shifts found by `place` where enough horizontal sections cut the skins,
+/// whether or not they fix the position: [`place_with`] without its curvature test.
+pub(crate) fn place_where_sections_allow(
+    circles: &circles::CirclesObjective,
+    tilted: AxisParameters,
+    place: impl FnOnce(AxisParameters) -> Option<(AxisParameters, u64)>,
+) -> Option<(AxisParameters, u64)> {
     let usable_sections = circles
         .surface
         .horizontal_sections(&sections::CandidateFrame::new(&tilted))
@@ -378,8 +389,7 @@ pub(crate) fn place_with(
     if usable_sections < MIN_PLACING_SECTIONS {
         return None;
     }
-    let (placed, iterations) = place(tilted)?;
-    (radial_curvature(circles, &placed) >= MIN_PLACING_CURVATURE).then_some((placed, iterations))
+    place(tilted)
 }
 
 /// The relative rise of Eq. 2 when the axis `p` moves [`PLACING_PROBE_MM`] towards and
