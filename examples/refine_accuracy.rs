@@ -12,6 +12,7 @@
 //! Environment: `REFINE_ACCURACY_DETAIL=1` adds a row per sherd part,
 //! `REFINE_ACCURACY_DEFORMATION=S` scales the vessels' deformation (default 1, 0 for
 //! perfect solids of revolution: what is left is the criteria's own error),
+//! `REFINE_ACCURACY_NOISE_MM=N` the scan noise (default 0.02 mm),
 //! `REFINE_ACCURACY_START_TILT_DEG=D` the start's tilt (default 3 degrees),
 //! `REFINE_ACCURACY_DUMP=1` prints a line per fragment on stderr.
 
@@ -182,6 +183,7 @@ fn main() {
                     fragment_count: FRAGMENTS_PER_VESSEL,
                     random_motion: true,
                     deformation_scale: env_number("REFINE_ACCURACY_DEFORMATION", 1.0),
+                    noise_mm: env_number("REFINE_ACCURACY_NOISE_MM", 0.02),
                     ..Default::default()
                 },
             );

@@ -13,6 +13,7 @@
 
 pub mod circle_fit;
 pub mod circles;
+pub mod normal_line_placement;
 pub mod objective;
 pub mod pareto;
 pub mod profile;
@@ -81,7 +82,9 @@ pub struct RefineOptions {
     /// otherwise, or when off, the plane's direction turns about the start axis's point at
     /// the fragment's centroid height and keeps the start's position error there (6 mm on
     /// tall vessels in `examples/refine_accuracy.rs`, whose starts are turned 3 degrees
-    /// about the base). Placing unconditionally moved short arcs 5-10 mm off.
+    /// about the base). Placing unconditionally moved short arcs 5-10 mm off. Where the
+    /// circles cannot place a base, the normals that meet one vertical line place it
+    /// ([`normal_line_placement`]: a floor with the turn of its foot).
     pub tangent_places_by_circles: bool,
 }
 
@@ -280,6 +283,15 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                         .map(|(placed, iterations)| (surface.parameters_of(&placement.axis_of(&placed)), iterations))
                 }
             };
+            // A floor with only the turn of its foot gives Eq. 2 no sections to use; its
+            // normals still meet the axis. Not a rim's: the vessel's ovality is largest
+            // there and turns its normals off the axis (by a millimetre or two at the
+            // axis on the synthetic rims), while the base keeps its shape on the wheel.
+            let placed = placed.or_else(|| {
+                let by_normals = (options.tangent_places_by_circles && edge == tangent::Edge::Base)
+                    .then(|| normal_line_placement::place_by_normal_lines(mesh, &surface, tilted));
+                by_normals.flatten().map(|placement| (placement.parameters, 0))
+            });
             let placed = placed.unwrap_or((tilted, 0));
             (placed.0, tangent_start, tangent_cost, tangent_iterations + placed.1, tangent_kept)
         }
