@@ -90,12 +90,19 @@ impl<'a> HalirProblem<'a> {
 
     /// Residual of every line (not only the subset) for the axis `(point, direction)`.
     pub fn residuals(&self, point: &Vector, direction: &Vector) -> Vec<f64> {
-        (0..self.lines.len())
-            .map(|i| {
-                let (a, q) = self.row(i, direction);
-                q - a.dot(point)
-            })
-            .collect()
+        (0..self.lines.len()).map(|i| self.residual(i, point, direction)).collect()
+    }
+
+    /// Residual of each line of the subset, in the subset's order: what the robust steps
+    /// weigh (a tenth of the lines of a 10k-vertex copy), without the rest.
+    fn subset_residuals(&self, point: &Vector, direction: &Vector) -> Vec<f64> {
+        self.indices.iter().map(|&i| self.residual(i, point, direction)).collect()
+    }
+
+    #[inline]
+    fn residual(&self, i: usize, point: &Vector, direction: &Vector) -> f64 {
+        let (a, q) = self.row(i, direction);
+        q - a.dot(point)
     }
 
     /// 2x2 covariance factor `(Σ w x xᵀ)⁻¹` of the point coordinates, for the point's uncertainty.
@@ -121,7 +128,7 @@ impl<'a> HalirProblem<'a> {
         let chart = Chart { lines: &packed, kind: self.kind, start: *start, e1, e2 };
         let step = step_rad.tan();
         let simplex = vec![vec![0.0, 0.0], vec![step, 0.0], vec![0.0, step]];
-        let solver = match NelderMead::new(simplex).with_sd_tolerance(1e-12) {
+        let solver = match NelderMead::new(simplex).with_sd_tolerance(SEARCH_COST_TOLERANCE) {
             Ok(solver) => solver,
             Err(_) => return (*start, self.solve_point(start).1),
         };
@@ -149,6 +156,16 @@ impl<'a> HalirProblem<'a> {
         Matrix2::new(fuu, fuv, fuv, fvv)
     }
 }
+
+/// The search stops when its simplex's costs spread less than this. The lines are
+/// dimensionless (scaled by the sherd's size), so costs are about the squared relative
+/// noise, 1e-4: the simplex then spans some 3e-4 radians, 0.02 degrees, well below the
+/// axis's own uncertainty. 1e-12 made the orientation a tenth slower (`cargo bench
+/// --bench orient`: 50.3 against 45.4 ms) for the same tables of
+/// `examples/orient_accuracy.rs` and of `examples/refine_accuracy.rs`'s pipeline (within
+/// a sherd or two: axes on a knife edge go one way or the other); 1e-10 (43 ms) lost four
+/// pipeline sherds from within 4 mm.
+const SEARCH_COST_TOLERANCE: f64 = 1e-11;
 
 /// One line of [`HalirProblem::packed`].
 struct PackedLine {
@@ -329,56 +346,10 @@ pub fn multi_start(lines: &CenteredLines, seeds: &[Hypothesis], options: &HalirO
 /// MM refinement of candidate directions on (a large subsample of) all lines; the fit with
 /// the lowest MM cost.
 pub fn refine_candidates(lines: &CenteredLines, candidates: &[Vector], options: &HalirOptions) -> Option<HalirFit> {
-    if candidates.is_empty() || lines.len() < 3 {
-        return None;
-    }
-    let mut problem = HalirProblem::new(lines, options.kind);
-    problem.indices = stride_subset(lines.len(), options.refine_subsample);
-    let subset_prior: Vec<f64> = {
-        let mut mask = vec![0.0; lines.len()];
-        for &i in &problem.indices {
-            mask[i] = lines.weights[i];
-        }
-        mask
-    };
-    // S-step: the smallest M-scale among the candidates (each with its best point).
-    let scales: Vec<f64> = candidates
-        .iter()
-        .map(|d| {
-            let (point, _) = problem.solve_point(d);
-            m_scale(&problem.residuals(&point, d), &subset_prior)
-        })
-        .collect();
-    let scale = scales.iter().copied().filter(|s| *s > 0.0).fold(f64::INFINITY, f64::min);
-    let scale = if scale.is_finite() { scale } else { 1e-12 };
-    // The candidates are refined independently, one per core, each with its own weights;
-    // collected in their order, so the result is the same as one after the other.
-    let mut results: Vec<(Vector, Vector, f64, Vec<f64>)> = candidates
-        .par_iter()
-        .map(|start| {
-            let mut problem = HalirProblem { weights: problem.weights.clone(), indices: problem.indices.clone(), ..problem };
-            let mut direction = *start;
-            let mut point = problem.solve_point(&direction).0;
-            for round in 0..options.m_step_rounds {
-                let robust = m_step_weights(&problem.residuals(&point, &direction), scale);
-                problem.weights = subset_prior.iter().zip(&robust).map(|(p, r)| p * r).collect();
-                let step = if round == 0 { 0.05 } else { 0.01 };
-                let (next, _) = problem.search(&direction, step, if round == 0 { 100 } else { 50 });
-                let moved = next.dot(&direction).abs().min(1.0).acos();
-                direction = next;
-                point = problem.solve_point(&direction).0;
-                if moved < 1e-5 {
-                    break;
-                }
-            }
-            let residuals = problem.residuals(&point, &direction);
-            let cost = m_step_cost(&residuals, &subset_prior, scale);
-            (direction, point, cost, residuals)
-        })
-        .collect();
-    results.sort_by(|a, b| a.2.total_cmp(&b.2));
+    let MmSearch { mut problem, subset_prior, scale, mut results } = mm_search(lines, candidates, options)?;
     let alternatives: Vec<(Vector, f64)> = results.iter().map(|r| (r.0, r.2)).collect();
-    let (direction, point, cost, residuals) = results.swap_remove(0);
+    let (direction, point, cost) = results.swap_remove(0);
+    let residuals = problem.residuals(&point, &direction);
     let robust_weights = m_step_weights(&residuals, scale);
     // Precision: Gauss-Newton covariance of the profiled least squares with the final
     // weights, residual variance from the weighted residuals of the inliers.
@@ -395,6 +366,78 @@ pub fn refine_candidates(lines: &CenteredLines, candidates: &[Vector], options: 
     let information = problem.point_information(&direction) / mean_weight;
     let point_sigma = largest_std(&information, variance);
     Some(HalirFit { direction, point, residuals, robust_weights, scale, cost, angle_sigma_rad, point_sigma, alternatives })
+}
+
+/// The direction [`refine_candidates`] finds, without the precision figures, the
+/// residuals of every line and the competitors (what the leave-one-region-out refits need).
+pub fn refined_direction(lines: &CenteredLines, candidates: &[Vector], options: &HalirOptions) -> Option<Vector> {
+    mm_search(lines, candidates, options).map(|search| search.results[0].0)
+}
+
+/// The MM search of [`refine_candidates`]: the problem on the subset, the prior weights
+/// of the subset's lines (0 elsewhere), the S-scale held fixed, and the candidates
+/// refined `(direction, point, cost)`, cheapest first.
+struct MmSearch<'a> {
+    problem: HalirProblem<'a>,
+    subset_prior: Vec<f64>,
+    scale: f64,
+    results: Vec<(Vector, Vector, f64)>,
+}
+
+fn mm_search<'a>(lines: &'a CenteredLines, candidates: &[Vector], options: &HalirOptions) -> Option<MmSearch<'a>> {
+    if candidates.is_empty() || lines.len() < 3 {
+        return None;
+    }
+    let mut problem = HalirProblem::new(lines, options.kind);
+    problem.indices = stride_subset(lines.len(), options.refine_subsample);
+    let subset_prior: Vec<f64> = {
+        let mut mask = vec![0.0; lines.len()];
+        for &i in &problem.indices {
+            mask[i] = lines.weights[i];
+        }
+        mask
+    };
+    // The robust steps see the subset only (the other lines have prior weight 0 there and
+    // would add exact zeros to every sum): its prior weights in the subset's order.
+    let prior_in_subset: Vec<f64> = problem.indices.iter().map(|&i| lines.weights[i]).collect();
+    // S-step: the smallest M-scale among the candidates (each with its best point).
+    let scales: Vec<f64> = candidates
+        .iter()
+        .map(|d| {
+            let (point, _) = problem.solve_point(d);
+            m_scale(&problem.subset_residuals(&point, d), &prior_in_subset)
+        })
+        .collect();
+    let scale = scales.iter().copied().filter(|s| *s > 0.0).fold(f64::INFINITY, f64::min);
+    let scale = if scale.is_finite() { scale } else { 1e-12 };
+    // The candidates are refined independently, one per core, each with its own weights;
+    // collected in their order, so the result is the same as one after the other.
+    let mut results: Vec<(Vector, Vector, f64)> = candidates
+        .par_iter()
+        .map(|start| {
+            let mut problem = HalirProblem { weights: problem.weights.clone(), indices: problem.indices.clone(), ..problem };
+            let mut direction = *start;
+            let mut point = problem.solve_point(&direction).0;
+            for round in 0..options.m_step_rounds {
+                let robust = m_step_weights(&problem.subset_residuals(&point, &direction), scale);
+                for ((&i, prior), r) in problem.indices.iter().zip(&prior_in_subset).zip(&robust) {
+                    problem.weights[i] = prior * r;
+                }
+                let step = if round == 0 { 0.05 } else { 0.01 };
+                let (next, _) = problem.search(&direction, step, if round == 0 { 100 } else { 50 });
+                let moved = next.dot(&direction).abs().min(1.0).acos();
+                direction = next;
+                point = problem.solve_point(&direction).0;
+                if moved < 1e-5 {
+                    break;
+                }
+            }
+            let cost = m_step_cost(&problem.subset_residuals(&point, &direction), &prior_in_subset, scale);
+            (direction, point, cost)
+        })
+        .collect();
+    results.sort_by(|a, b| a.2.total_cmp(&b.2));
+    Some(MmSearch { problem, subset_prior, scale, results })
 }
 
 /// `sqrt` of the largest eigenvalue of `numerator * information⁻¹`; infinite when singular.

@@ -17,7 +17,7 @@
 
 use rayon::prelude::*;
 
-use super::halir::{HalirFit, HalirOptions, refine_candidates};
+use super::halir::{HalirFit, HalirOptions, refined_direction};
 use super::line_complex::CenteredLines;
 use crate::mesh::Vector;
 
@@ -176,9 +176,8 @@ pub fn leave_one_region_out(
                     *weight = 0.0;
                 }
             }
-            match refine_candidates(&rest, &starts, options) {
-                Some(refit) => refit
-                    .direction
+            match refined_direction(&rest, &starts, options) {
+                Some(direction) => direction
                     .normalize()
                     .dot(&fit.direction.normalize())
                     .abs()
@@ -205,6 +204,7 @@ pub fn leave_one_region_out(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::orient::halir::refine_candidates;
     use crate::mesh::Point;
     use crate::orient::normal_lines::NormalLines;
 
