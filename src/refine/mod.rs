@@ -225,7 +225,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
     let surface = PreparedSurface::new(mesh, axis, options.surface, options.section_count)?;
     let prepare_ms = started.elapsed().as_secs_f64() * 1e3;
     let search_started = Instant::now();
-    let (method, reason, edge) = choose_criterion(&surface, options);
+    let Choice { criterion: method, reason, edge, levelled: levelled_by_detection } = choose_criterion(&surface, options);
     let bound = options.search_bound_deg.to_radians();
     let settings = SearchSettings { free: options.free, tilt_bound_rad: bound, ..Default::default() };
     let start = [0.0; 4];
@@ -255,15 +255,19 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
             let (tilted, tangent_cost, tangent_iterations, tangent_kept) = if options.free == FreeParameters::ShiftsOnly {
                 (start, tangent_start, 0, true)
             } else {
-                let levelled = tangent::level_edge(
-                    &surface,
-                    edge,
-                    options.tangent_tolerance_mm,
-                    options.vertical_section_count,
-                    start,
-                    &settings,
-                    None,
-                )?;
+                // The detection levelled the edge from this start with these settings.
+                let levelled = match levelled_by_detection {
+                    Some(levelled) => levelled,
+                    None => tangent::level_edge(
+                        &surface,
+                        edge,
+                        options.tangent_tolerance_mm,
+                        options.vertical_section_count,
+                        start,
+                        &settings,
+                        None,
+                    )?,
+                };
                 // Never worse than the start by Eq. 7 itself.
                 if levelled.value <= tangent_start || !tangent_start.is_finite() {
                     (levelled.parameters, levelled.value, levelled.iterations, false)
@@ -454,18 +458,36 @@ fn run_guarded<O: Objective>(
 pub fn chosen_criterion(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Result<Criterion> {
     validate(mesh, axis, options)?;
     let surface = PreparedSurface::new(mesh, axis, options.surface, options.section_count)?;
-    Ok(choose_criterion(&surface, options).0)
+    Ok(choose_criterion(&surface, options).criterion)
 }
 
-/// The criterion to run, why, and the edge for the tangent criterion.
-pub(crate) fn choose_criterion(surface: &PreparedSurface, options: &RefineOptions) -> (Criterion, String, Option<Edge>) {
-    let detect = || detect_edges(surface, options).into_iter().min_by(|a, b| a.spread_mm.total_cmp(&b.spread_mm));
+/// The criterion [`choose_criterion`] picked.
+pub(crate) struct Choice {
+    /// The criterion to run.
+    pub criterion: Criterion,
+    /// Why.
+    pub reason: String,
+    /// The edge for the tangent criterion.
+    pub edge: Option<Edge>,
+    /// The edge levelled from the start axis, where the detection already did it (the
+    /// tangent criterion's own first step, with the same settings).
+    pub levelled: Option<Minimum>,
+}
+
+/// The criterion to run, why, the edge for the tangent criterion and, where the edge was
+/// detected, its levelling.
+pub(crate) fn choose_criterion(surface: &PreparedSurface, options: &RefineOptions) -> Choice {
+    let detect = || {
+        detect_edges_levelled(surface, options, [EDGE_LEVEL_FRACTION; 2])
+            .into_iter()
+            .min_by(|a, b| a.0.spread_mm.total_cmp(&b.0.spread_mm))
+    };
     match options.criterion {
-        Criterion::Auto => match options.edge.map(|edge| (edge, None)).or_else(|| detect().map(|e| (e.edge, Some(e)))) {
-            Some((edge, evidence)) => (
-                Criterion::Tangent,
-                match evidence {
-                    Some(e) => format!(
+        Criterion::Auto => match options.edge.map(|edge| (edge, None)).or_else(|| detect().map(|e| (e.0.edge, Some(e)))) {
+            Some((edge, detected)) => Choice {
+                criterion: Criterion::Tangent,
+                reason: match &detected {
+                    Some((e, _)) => format!(
                         "a level {:?}: {:.0}% of vertical sections within {EDGE_LEVEL_TOLERANCE_MM} mm, spread {:.2} mm",
                         e.edge,
                         e.level_fraction * 100.0,
@@ -473,15 +495,22 @@ pub(crate) fn choose_criterion(surface: &PreparedSurface, options: &RefineOption
                     ),
                     None => format!("{edge:?} given"),
                 },
-                Some(edge),
-            ),
-            None => (Criterion::Circles, "no level rim or base: horizontal circles".into(), None),
+                edge: Some(edge),
+                levelled: detected.and_then(|(_, levelled)| levelled),
+            },
+            None => Choice {
+                criterion: Criterion::Circles,
+                reason: "no level rim or base: horizontal circles".into(),
+                edge: None,
+                levelled: None,
+            },
         },
         Criterion::Tangent => {
-            let edge = options.edge.or_else(|| detect().map(|e| e.edge)).unwrap_or(Edge::Rim);
-            (Criterion::Tangent, "asked for".into(), Some(edge))
+            let detected = if options.edge.is_some() { None } else { detect() };
+            let edge = options.edge.or(detected.as_ref().map(|e| e.0.edge)).unwrap_or(Edge::Rim);
+            Choice { criterion: Criterion::Tangent, reason: "asked for".into(), edge: Some(edge), levelled: detected.and_then(|(_, l)| l) }
         }
-        other => (other, "asked for".into(), None),
+        other => Choice { criterion: other, reason: "asked for".into(), edge: None, levelled: None },
     }
 }
 
@@ -501,6 +530,16 @@ pub fn detect_edges(surface: &PreparedSurface, options: &RefineOptions) -> Vec<t
 /// over a third of the arc gives its radius, while its short chord leaves the tilt about
 /// it poorly fixed for Eq. 7.
 pub fn detect_edges_over(surface: &PreparedSurface, options: &RefineOptions, min_level_fraction: [f64; 2]) -> Vec<tangent::EdgeEvidence> {
+    detect_edges_levelled(surface, options, min_level_fraction).into_iter().map(|(evidence, _)| evidence).collect()
+}
+
+/// [`detect_edges_over`] with each detected edge's levelling (`None` when the options
+/// hold the tilts).
+fn detect_edges_levelled(
+    surface: &PreparedSurface,
+    options: &RefineOptions,
+    min_level_fraction: [f64; 2],
+) -> Vec<(tangent::EdgeEvidence, Option<Minimum>)> {
     let settings = SearchSettings {
         free: FreeParameters::TiltsOnly,
         tilt_bound_rad: options.search_bound_deg.to_radians(),
@@ -509,21 +548,23 @@ pub fn detect_edges_over(surface: &PreparedSurface, options: &RefineOptions, min
     [Edge::Rim, Edge::Base]
         .into_iter()
         .filter_map(|edge| {
-            let levelled = if options.free == FreeParameters::ShiftsOnly {
-                [0.0; 4]
+            let minimum = if options.free == FreeParameters::ShiftsOnly {
+                None
             } else {
-                tangent::level_edge(
-                    surface,
-                    edge,
-                    options.tangent_tolerance_mm,
-                    options.vertical_section_count,
-                    [0.0; 4],
-                    &settings,
-                    None,
+                Some(
+                    tangent::level_edge(
+                        surface,
+                        edge,
+                        options.tangent_tolerance_mm,
+                        options.vertical_section_count,
+                        [0.0; 4],
+                        &settings,
+                        None,
+                    )
+                    .ok()?,
                 )
-                .ok()?
-                .parameters
             };
+            let levelled = minimum.map_or([0.0; 4], |m| m.parameters);
             let min_level_fraction = min_level_fraction[usize::from(edge == Edge::Base)];
             let passes = |e: &tangent::EdgeEvidence| e.level_fraction >= min_level_fraction && e.spread_mm <= EDGE_MAX_SPREAD_MM;
             let evidence = |parameters: &AxisParameters| {
@@ -531,7 +572,7 @@ pub fn detect_edges_over(surface: &PreparedSurface, options: &RefineOptions, min
             };
             let at_levelled = evidence(&levelled);
             if passes(&at_levelled) {
-                return Some(at_levelled);
+                return Some((at_levelled, minimum));
             }
             // A partial edge is level from its top, and levelling it lets the rising break
             // lines pull the plane off it: it is also tested at the axis as given.
@@ -541,7 +582,7 @@ pub fn detect_edges_over(surface: &PreparedSurface, options: &RefineOptions, min
             let partial = |parameters: &AxisParameters| {
                 tangent::edge_evidence_anchored(surface, edge, EDGE_LEVEL_TOLERANCE_MM, options.vertical_section_count, parameters, true)
             };
-            [levelled, [0.0; 4]].iter().map(partial).find(passes)
+            [levelled, [0.0; 4]].iter().map(partial).find(passes).map(|evidence| (evidence, minimum))
         })
         .collect()
 }

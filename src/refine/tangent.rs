@@ -93,22 +93,24 @@ impl SectionCandidates {
         let centred = d.x * self.centre_xy[0] + d.y * self.centre_xy[1] + offset;
         // Upside-down frames (never searched) would reverse the order: scan them all.
         let bounded = d.z > 0.0;
-        let mut best: Option<(Point, usize)> = None;
+        // (height under the frame, order, index): only the heights are compared, the
+        // winner alone is moved whole.
+        let mut best: Option<(f64, usize, usize)> = None;
         for (i, (p, &order)) in self.points.iter().zip(&self.order).enumerate() {
-            if let (true, Some((found, _))) = (bounded, &best) {
+            if let (true, Some((found_z, _, _))) = (bounded, &best) {
                 let spread = tilt * self.reach_mm[i] + self.slack_mm;
                 let beyond = match edge {
-                    Edge::Rim => d.z * p.z + centred + spread < found.z,
-                    Edge::Base => d.z * p.z + centred - spread > found.z,
+                    Edge::Rim => d.z * p.z + centred + spread < *found_z,
+                    Edge::Base => d.z * p.z + centred - spread > *found_z,
                 };
                 if beyond {
                     break;
                 }
             }
-            let moved = frame.apply(p);
+            let height = frame.height(p);
             let better = match &best {
                 None => true,
-                Some((found, found_order)) => match (edge, moved.z.total_cmp(&found.z)) {
+                Some((found_z, found_order, _)) => match (edge, height.total_cmp(found_z)) {
                     (_, std::cmp::Ordering::Equal) => match edge {
                         Edge::Rim => order > *found_order,
                         Edge::Base => order < *found_order,
@@ -118,10 +120,10 @@ impl SectionCandidates {
                 },
             };
             if better {
-                best = Some((moved, order));
+                best = Some((height, order, i));
             }
         }
-        best.map(|(p, _)| p)
+        best.map(|(_, _, i)| frame.apply(&self.points[i]))
     }
 }
 

@@ -163,7 +163,7 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
     }
     super::validate(mesh, axis, options)?;
     let surface = PreparedSurface::new(mesh, axis, options.surface, options.section_count)?;
-    let (method, _, edge) = choose_criterion(&surface, options);
+    let super::Choice { criterion: method, edge, .. } = choose_criterion(&surface, options);
     let section_count = surface.horizontal_sections(&super::sections::CandidateFrame::new(&[0.0; 4])).len();
     let settings = SearchSettings {
         free: options.free,
@@ -198,6 +198,14 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
             place_where_sections_allow(circles, tilted, newton_or_search)
         }
     };
+    // The tangent criterion's vertical sections are the estimate's for every resample
+    // (only their weights change): cut once.
+    let tangent = match (method, edge) {
+        (Criterion::Tangent, Some(edge)) if options.free != FreeParameters::ShiftsOnly => {
+            Some(TangentObjective::new(&surface, edge, options.tangent_tolerance_mm, options.vertical_section_count))
+        }
+        _ => None,
+    };
     let axes = (0..bootstrap.samples)
         .into_par_iter()
         .filter_map(|sample| {
@@ -205,15 +213,13 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
             let weights = resample_weights(section_count, &mut rng);
             let circles = CirclesObjective { surface: &surface, section_weights: Some(&weights) };
             let mut start = [0.0; 4];
-            let free = match (method, edge) {
-                (Criterion::Tangent, Some(edge)) if options.free != FreeParameters::ShiftsOnly => {
+            let free = match &tangent {
+                Some(tangent) => {
                     // The estimate is level already: each resample moves it by the turn of
                     // the least-squares plane through the level extremes of its sections.
                     // Repeating the Nelder-Mead search of Eq. 7 instead let a resample of a
                     // short rim (its sections nearly on one chord) drift about that chord
                     // to the search bound: intervals of 20 degrees beside others of 0.
-                    let tangent =
-                        TangentObjective::new(&surface, edge, options.tangent_tolerance_mm, options.vertical_section_count);
                     let tangent_weights = resample_weights(tangent.section_count(), &mut rng);
                     let [base_x, base_y] = tangent.plane_tilts(&start, None)?;
                     let [tilt_x, tilt_y] = tangent.plane_tilts(&start, Some(&tangent_weights))?;
@@ -223,7 +229,7 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
                     }
                     return Some(surface.axis_of(&start));
                 }
-                _ => options.free,
+                None => options.free,
             };
             let placed = minimize(&circles, start, &SearchSettings { free, ..settings }).ok()?;
             Some(surface.axis_of(&placed.parameters))
