@@ -151,19 +151,7 @@ impl HorizontalSection {
 /// blur that (few angles, a gap no wider than a bucket), or an angle is not a number, the
 /// angles are sorted.
 fn largest_angular_gap(angles: &[f64]) -> (f64, f64) {
-    let by_sorting = || {
-        let mut sorted = angles.to_vec();
-        sorted.sort_unstable_by(f64::total_cmp);
-        let mut start = sorted[0];
-        let mut largest_gap = sorted[0] + std::f64::consts::TAU - sorted[sorted.len() - 1];
-        for w in sorted.windows(2) {
-            if w[1] - w[0] > largest_gap {
-                largest_gap = w[1] - w[0];
-                start = w[1];
-            }
-        }
-        (start, largest_gap)
-    };
+    let by_sorting = || largest_angular_gap_sorted(angles);
     let count = angles.len();
     if count < 64 || angles.iter().any(|a| a.is_nan()) {
         return by_sorting();
@@ -201,15 +189,27 @@ fn largest_angular_gap(angles: &[f64]) -> (f64, f64) {
     if widest_between <= width { by_sorting() } else { (start, largest_gap) }
 }
 
-/// The full turn minus the largest gap between the given angles (radians, any range).
-pub fn sector_angle_rad(mut angles: Vec<f64>) -> f64 {
+/// [`largest_angular_gap`] by a scan of the sorted angles (at least one).
+fn largest_angular_gap_sorted(angles: &[f64]) -> (f64, f64) {
+    let mut sorted = angles.to_vec();
+    sorted.sort_unstable_by(f64::total_cmp);
+    let mut start = sorted[0];
+    let mut largest_gap = sorted[0] + std::f64::consts::TAU - sorted[sorted.len() - 1];
+    for w in sorted.windows(2) {
+        if w[1] - w[0] > largest_gap {
+            largest_gap = w[1] - w[0];
+            start = w[1];
+        }
+    }
+    (start, largest_gap)
+}
+
+/// The full turn minus the largest gap between the given angles (radians, within one turn).
+pub fn sector_angle_rad(angles: Vec<f64>) -> f64 {
     if angles.len() < 2 {
         return 0.0;
     }
-    angles.sort_unstable_by(f64::total_cmp);
-    let wrap_gap = angles[0] + std::f64::consts::TAU - angles[angles.len() - 1];
-    let largest_gap = angles.windows(2).map(|w| w[1] - w[0]).fold(wrap_gap, f64::max);
-    std::f64::consts::TAU - largest_gap
+    std::f64::consts::TAU - largest_angular_gap(&angles).1
 }
 
 /// The fragment prepared for refinement around a start axis.
@@ -811,15 +811,7 @@ mod tests {
     fn largest_gap_from_buckets_equals_the_sorted_scan_bit_for_bit() {
         use rand::{Rng, SeedableRng};
         let sorted_scan = |angles: &[f64]| {
-            let mut sorted = angles.to_vec();
-            sorted.sort_unstable_by(f64::total_cmp);
-            let (mut start, mut largest) = (sorted[0], sorted[0] + std::f64::consts::TAU - sorted[sorted.len() - 1]);
-            for w in sorted.windows(2) {
-                if w[1] - w[0] > largest {
-                    largest = w[1] - w[0];
-                    start = w[1];
-                }
-            }
+            let (start, largest) = largest_angular_gap_sorted(angles);
             (start.to_bits(), largest.to_bits())
         };
         let pi = std::f64::consts::PI;
