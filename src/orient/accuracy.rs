@@ -51,6 +51,8 @@ pub struct FragmentOutcome {
     pub competitor: Option<(f64, f64)>,
     /// Largest turn of the axis with one region of the sherd left out, degrees.
     pub region_turn_deg: f64,
+    /// Where the axis passes through the sherd, the curvature radius there, mm.
+    pub axis_crossing_curvature_radius_mm: Option<f64>,
     /// Fraction of inliers.
     pub inlier_fraction: f64,
     /// Strength of the sense cue.
@@ -102,6 +104,7 @@ pub fn evaluate(id: String, sherd: &SynthSherd, options: &OrientOptions) -> Frag
         position_uncertainty_mm: f64::INFINITY,
         competitor: None,
         region_turn_deg: f64::INFINITY,
+        axis_crossing_curvature_radius_mm: None,
         inlier_fraction: 0.0,
         direction_strength: 0.0,
         direction_cue: String::new(),
@@ -139,6 +142,7 @@ fn fill(outcome: &mut FragmentOutcome, sherd: &SynthSherd, orientation: &Orienta
     outcome.position_uncertainty_mm = orientation.position_uncertainty_mm;
     outcome.competitor = report.competitor;
     outcome.region_turn_deg = report.region_turn_deg;
+    outcome.axis_crossing_curvature_radius_mm = report.axis_crossing_curvature_radius_mm;
     outcome.inlier_fraction = report.inlier_fraction;
     outcome.direction_strength = report.direction_strength;
     outcome.direction_cue = report.direction_cue.clone();

@@ -40,6 +40,10 @@ use normal_lines::NormalLines;
 /// value (a C caller's `SIZE_MAX`) from running for ever.
 pub const MAX_SMOOTHING_ITERATIONS: usize = 1000;
 
+/// The points closer to the axis than this fraction of the sherd's median radius are where
+/// the axis passes through the sherd (see [`verdict::axis_crossing_curvature_radius_mm`]).
+const AXIS_CROSSING_NEAR_FRACTION: f64 = 0.1;
+
 /// Options of [`orient_automatic`].
 #[derive(Clone, Debug)]
 pub struct OrientOptions {
@@ -140,6 +144,10 @@ pub struct OrientReport {
     /// Largest turn of the axis, degrees, when one region of the sherd is left out of the
     /// fit (see [`region_stability`]).
     pub region_turn_deg: f64,
+    /// Where the axis passes through the sherd, the curvature radius its normals give there,
+    /// millimetres (see [`verdict::axis_crossing_curvature_radius_mm`]); `None` where the
+    /// axis runs clear of the sherd.
+    pub axis_crossing_curvature_radius_mm: Option<f64>,
     /// Angle to the best competing axis, degrees, and its cost relative to the best.
     pub competitor: Option<(f64, f64)>,
     /// The cue that set the sense base to rim, or why none could.
@@ -254,6 +262,8 @@ pub fn orient_automatic_with_decimated(mesh: &Mesh, decimated: Option<&Mesh>, op
     report.median_radius_mm = radii[radii.len() / 2];
     report.residual_angle_deg = verdict::axis_residual_angle_deg(&lines, &axis, &inliers);
     report.sphere_residual_angle_deg = verdict::sphere_residual_angle_deg(&lines, &inliers);
+    report.axis_crossing_curvature_radius_mm =
+        verdict::axis_crossing_curvature_radius_mm(&lines, &axis, AXIS_CROSSING_NEAR_FRACTION * report.median_radius_mm);
     lap("direction", &mut clock);
 
     let calibration = &options.thresholds;

@@ -77,6 +77,12 @@ pub struct VerdictThresholds {
     pub max_residual_angle_deg: f64,
     /// Smallest fraction of lines the M-step keeps.
     pub min_inlier_fraction: f64,
+    /// Smallest curvature radius of the surface where the axis passes through the sherd,
+    /// millimetres (see [`axis_crossing_curvature_radius_mm`]). On the synthetic corpus the
+    /// right axes that cross their sherd (bases) give 17-515 mm, the wrong ones 0.2-6.4 mm;
+    /// a floor curved tighter than 10 mm at its centre would be a knob or a pointed toe,
+    /// whose axis the normals of a sherd cannot be trusted with either.
+    pub min_axis_crossing_curvature_radius_mm: f64,
     /// A competing axis more than 10 degrees away whose cost is within this ratio of the
     /// best makes the answer ambiguous.
     pub competitor_cost_ratio: f64,
@@ -110,6 +116,7 @@ impl Default for VerdictThresholds {
             max_position_uncertainty_mm: 5.0,
             max_residual_angle_deg: 5.0,
             min_inlier_fraction: 0.3,
+            min_axis_crossing_curvature_radius_mm: 10.0,
             competitor_cost_ratio: 1.1,
             max_region_turn_deg: super::region_stability::MAX_REGION_TURN_DEG,
             min_sense_confidence: 0.55,
@@ -181,6 +188,14 @@ pub fn judge(
             report.residual_angle_deg, report.residual_scale_mm, report.median_radius_mm, limits.max_residual_angle_deg
         ));
     }
+    if let Some(radius_mm) = report.axis_crossing_curvature_radius_mm {
+        if !(radius_mm >= limits.min_axis_crossing_curvature_radius_mm) {
+            return flag(format!(
+                "the axis would pass through the sherd where its surface is curved like a knob (curvature radius {radius_mm:.1} mm < {:.0} mm): a vessel's floor meets its axis flat or gently domed, so this is a curved wall taken for a floor",
+                limits.min_axis_crossing_curvature_radius_mm
+            ));
+        }
+    }
     if !(angle_uncertainty_deg <= limits.max_angle_uncertainty_deg) {
         return flag(format!(
             "the axis direction is uncertain: +-{:.1} deg (at most {:.1} deg accepted)",
@@ -214,6 +229,29 @@ pub fn judge(
         ) };
     }
     Verdict::Oriented
+}
+
+/// Where `axis` passes through the sherd (the points closer to it than `near_mm`): the
+/// median distance from those points along their normals to the axis, `r / sin(angle
+/// between normal and axis)`, millimetres; `None` where fewer than 5 points are that close.
+///
+/// On a surface of revolution this distance is the radius of curvature of the parallel
+/// circle, and where the surface meets its axis it is the curvature radius of the floor
+/// there: a vessel's floor meets the axis square, flat or gently domed, so the distance is
+/// large. A few millimetres means that the axis was put through a curved wall, where no
+/// vessel's axis can run (a shoulder taken for a dome).
+pub fn axis_crossing_curvature_radius_mm(lines: &NormalLines, axis: &Axis, near_mm: f64) -> Option<f64> {
+    let direction = axis.direction.into_inner();
+    let (distances, weights): (Vec<f64>, Vec<f64>) = (0..lines.len())
+        .filter_map(|i| {
+            let radius = axis.distance_to(&lines.points[i]);
+            (radius < near_mm).then(|| {
+                let sine = lines.directions[i].cross(&direction).norm();
+                ((radius / sine.max(1e-9)).min(1e9), lines.weights[i])
+            })
+        })
+        .unzip();
+    (distances.len() >= 5).then(|| weighted_median_abs(&distances, &weights))
 }
 
 /// By how much the normals typically miss `axis`, as an angle seen from the axis:
@@ -256,4 +294,67 @@ pub fn sphere_residual_angle_deg(lines: &NormalLines, use_line: &[bool]) -> f64 
         })
         .unzip();
     weighted_median_abs(&angles, &weights)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::Vector;
+
+    /// Lines of a cap `z = f(r)` about the z axis, on a polar grid out to `r_max`, with the
+    /// cap's normals.
+    fn cap_lines(slope: impl Fn(f64) -> f64, r_max: f64) -> NormalLines {
+        let mut lines = NormalLines::default();
+        for ring in 0..=20 {
+            let r = r_max * ring as f64 / 20.0;
+            for step in 0..24 {
+                let angle = step as f64 * std::f64::consts::TAU / 24.0;
+                let (c, s) = (angle.cos(), angle.sin());
+                // z = f(r): the normal is (-f'(r) cos, -f'(r) sin, 1), normalised.
+                let d = slope(r);
+                lines.points.push(Point::new(r * c, r * s, 0.0));
+                lines.directions.push(Vector::new(-d * c, -d * s, 1.0).normalize());
+                lines.weights.push(1.0);
+                lines.vertex_indices.push(lines.points.len() - 1);
+            }
+        }
+        lines
+    }
+
+    #[test]
+    fn a_floor_meets_its_axis_flat_and_a_knob_does_not() {
+        let axis = Axis::z();
+        // A floor domed with a 60 mm radius of curvature, and a knob of 4 mm: the normals of
+        // a sphere of radius R meet the axis R away, whatever the point.
+        let sphere_slope = |radius: f64| move |r: f64| r / (radius * radius - r * r).sqrt();
+        let floor = axis_crossing_curvature_radius_mm(&cap_lines(sphere_slope(60.0), 3.0), &axis, 3.5).unwrap();
+        let knob = axis_crossing_curvature_radius_mm(&cap_lines(sphere_slope(4.0), 3.0), &axis, 3.5).unwrap();
+        assert!((floor - 60.0).abs() < 0.5, "floor {floor}");
+        assert!((knob - 4.0).abs() < 0.1, "knob {knob}");
+        // A flat floor: the normals are parallel to the axis, the radius is unbounded.
+        let flat = axis_crossing_curvature_radius_mm(&cap_lines(|_| 0.0, 3.0), &axis, 3.5).unwrap();
+        assert!(flat > 1e6, "flat {flat}");
+        // An axis that runs clear of the sherd gives nothing to judge.
+        let aside = Axis::new(Point::new(50.0, 0.0, 0.0), Vector::z());
+        assert_eq!(axis_crossing_curvature_radius_mm(&cap_lines(|_| 0.0, 3.0), &aside, 3.5), None);
+    }
+
+    #[test]
+    fn an_axis_through_a_knob_is_flagged() {
+        let mut report = OrientReport {
+            normal_spread: 0.5,
+            concurrency_ratio: 0.1,
+            residual_angle_deg: 1.0,
+            sphere_residual_angle_deg: 10.0,
+            inlier_fraction: 0.9,
+            direction_strength: 1.0,
+            axis_crossing_curvature_radius_mm: Some(60.0),
+            ..Default::default()
+        };
+        let limits = VerdictThresholds::default();
+        assert_eq!(judge(&report, 1.0, 1.0, &limits), Verdict::Oriented);
+        report.axis_crossing_curvature_radius_mm = Some(4.8);
+        let verdict = judge(&report, 1.0, 1.0, &limits);
+        assert!(verdict.reason().is_some_and(|r| r.contains("4.8 mm")), "{verdict:?}");
+    }
 }
