@@ -14,6 +14,7 @@ use crate::mesh::repair::{repair, RepairOptions, RepairReport};
 use crate::mesh::{Mesh, Point};
 use crate::orient::{decimated_copy, orient_automatic_with_decimated, orient_from_three_points, Axis, AxisRecord, ManualOptions, OrientOptions, Orientation, Verdict};
 use crate::profile::measure::{measure_with_bootstrap_mesh, MeasureOptions, Measurements};
+use crate::profile::rills::{rill_check, three_points_on, trace_rills, Rill, RillCheck, RillOptions};
 use crate::refine::{chosen_criterion, refine, refine_placing_on, Criterion, RefineOptions, Refinement};
 use crate::{Error, Result};
 
@@ -66,6 +67,9 @@ pub struct Analysis {
     pub refinement: Option<Refinement>,
     /// Measurements along the final axis, when the axis line is found (sense certain or not).
     pub measurements: Option<Measurements>,
+    /// The wheel rills traced under the final axis, longest first, also when the sherd
+    /// needs manual orientation (the longest is where to pick three points then).
+    pub rills: Vec<Rill>,
     /// Seconds spent in each step.
     pub timings: Timings,
     /// Millimetres per unit of the scan's file (given, or declared by the file).
@@ -163,7 +167,17 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
         measurements = Some(measure_with_bootstrap_mesh(&mesh, bootstrap_mesh, axis, &options.measure));
         timings.measure_s = clock.elapsed().as_secs_f64();
     }
-    Ok(Analysis { mesh, repair: repair_report, orientation, refinement, measurements, timings, millimetres_per_unit: scale })
+    let clock = Instant::now();
+    let axis = refinement.as_ref().map_or(&orientation.axis, |r| &r.axis);
+    // An orientation that found no axis at all (too few points) stands in with an
+    // arbitrary one, under which level bumps are no rills.
+    let found_an_axis = orientation.angle_uncertainty_deg != f64::INFINITY;
+    let rills = match crate::orient::segment_surfaces(&mesh, axis) {
+        Ok(skins) if found_an_axis => trace_rills(&mesh, axis, &skins, &RillOptions::default()),
+        _ => Vec::new(),
+    };
+    timings.measure_s += clock.elapsed().as_secs_f64();
+    Ok(Analysis { mesh, repair: repair_report, orientation, refinement, measurements, rills, timings, millimetres_per_unit: scale })
 }
 
 impl PipelineOptions {
@@ -281,6 +295,12 @@ pub struct SherdRecord {
     pub wall_thickness_mm: Option<f64>,
     /// Capacity of the whole vessel, litres, when the profile runs from base to rim.
     pub capacity_litres: Option<f64>,
+    /// The wheel rills under the axis: how many were traced and how far from horizontal
+    /// the axis puts them (null when none were traced).
+    pub rills: Option<RillCheck>,
+    /// For a sherd that needs manual orientation: three points on its longest rill, in the
+    /// scan's units, to give to `--manual` (or to check in a viewer first).
+    pub manual_points_on_rill: Option<[[f64; 3]; 3]>,
     /// The drawing written, if any.
     pub drawing: Option<String>,
     /// Seconds per step.
@@ -311,6 +331,9 @@ impl SherdRecord {
             Verdict::NeedsManualOrientation { reason } => {
                 record.status = STATUS_NEEDS_MANUAL.into();
                 record.reason = Some(reason.clone());
+                record.manual_points_on_rill = analysis.rills.first().map(|rill| {
+                    three_points_on(rill).map(|p| (p.coords / analysis.millimetres_per_unit).into())
+                });
                 return record;
             }
         }
@@ -334,11 +357,12 @@ impl SherdRecord {
             record.wall_thickness_mm = m.wall_thickness_mm;
             record.capacity_litres = m.capacity_litres;
         }
+        record.rills = rill_check(&analysis.rills);
         record
     }
 
     /// The columns of `report.csv`.
-    pub const CSV_HEADER: &'static str = "file,status,reason,rim_diameter_mm,rim_diameter_low_mm,rim_diameter_high_mm,base_diameter_mm,base_diameter_low_mm,base_diameter_high_mm,sector_angle_deg,sector_percent,height_mm,wall_thickness_mm,capacity_litres,axis_angle_upper_deg,residual_mm,method,drawing,read_s,repair_s,orient_s,refine_s,measure_s,draw_s";
+    pub const CSV_HEADER: &'static str = "file,status,reason,rim_diameter_mm,rim_diameter_low_mm,rim_diameter_high_mm,base_diameter_mm,base_diameter_low_mm,base_diameter_high_mm,sector_angle_deg,sector_percent,height_mm,wall_thickness_mm,capacity_litres,axis_angle_upper_deg,residual_mm,method,drawing,read_s,repair_s,orient_s,refine_s,measure_s,draw_s,rill_count,rill_slope_deg";
 
     /// This record as a row of `report.csv` (RFC 4180 quoting).
     pub fn csv_row(&self) -> String {
@@ -373,6 +397,8 @@ impl SherdRecord {
             format!("{:.3}", t.refine_s),
             format!("{:.3}", t.measure_s),
             format!("{:.3}", t.draw_s),
+            self.rills.map(|r| r.count.to_string()).unwrap_or_default(),
+            number(self.rills.map(|r| r.slope_deg)),
         ]
         .join(",")
     }

@@ -4,4 +4,5 @@
 pub mod measure;
 pub mod regularity;
 pub mod revolve;
+pub mod rills;
 pub mod section;

@@ -208,6 +208,17 @@ pub fn describe(record: &sherd::pipeline::SherdRecord) -> String {
     if let Some(r) = record.residual_mm {
         let _ = writeln!(text, "  residual: {r:.3} mm");
     }
+    if let Some(rills) = &record.rills {
+        let _ = writeln!(
+            text,
+            "  wheel rills: {} traced (longest {:.0} mm), sloping {:.1} deg (+-{:.1}) under this axis",
+            rills.count, rills.longest_arc_mm, rills.slope_deg, rills.slope_spread_deg
+        );
+    }
+    if let Some(points) = &record.manual_points_on_rill {
+        let picks: Vec<String> = points.iter().map(|[x, y, z]| format!("{x:.3},{y:.3},{z:.3}")).collect();
+        let _ = writeln!(text, "  three points on its longest wheel rill, for --manual: \"{}\"", picks.join(";"));
+    }
     if let Some(drawing) = &record.drawing {
         let _ = writeln!(text, "  drawing: {drawing}");
     }

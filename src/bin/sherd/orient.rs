@@ -16,9 +16,11 @@ use crate::common::AnalysisArgs;
     after_help = "Examples:\n  sherd orient A011.ply\n  sherd orient A011.ply --json > A011.axis.json\n  sherd orient A011.ply --refine tangent --surface outer\n  sherd orient body.ply --manual \"10,2,40;-31,5,38;4,-28,41\"   # three points on a rill\n\n\
 The axis is given in the scan's own frame and units, pointing from base to rim.\n\
 A sherd whose shape does not determine an axis (flat, near spherical, too small) is\n\
-reported as needs_manual_orientation with the reason; one whose axis line is found but\n\
-not which way is up (no level rim, no floor, a wall that hardly flares) as\n\
-sense_uncertain, still refined and measured. The exit code is 0 for both."
+reported as needs_manual_orientation with the reason (and, where wheel rills are\n\
+traced on it, three points on the longest for --manual); one whose axis line is found\n\
+but not which way is up (no level rim, no floor, a wall that hardly flares) as\n\
+sense_uncertain, still refined and measured. The exit code is 0 for both. The rills'\n\
+slope under the axis (0 when it puts them horizontal) is printed when any are traced."
 )]
 pub struct OrientArgs {
     /// The scan: .ply, .obj, .stl, .xyz or .pts.
