@@ -68,6 +68,8 @@ fn a011_is_oriented_from_three_points_on_its_longest_rill_with_its_rills_horizon
     let Some(path) = a011() else { return };
     let declined = orient_json(&path, &[]);
     assert_eq!(declined["status"], "needs_manual_orientation", "{declined:#}");
+    // What is loose is said: the tilt in the sherd's meridian plane, the profile's slant.
+    assert!(declined["reason"].as_str().unwrap().contains("meridian plane"), "{declined:#}");
     let points = declined["manual_points_on_rill"].as_array().unwrap_or_else(|| panic!("no rill points: {declined:#}"));
     let picks: Vec<String> = points.iter().map(|p| {
         let [x, y, z] = vector(p);

@@ -144,6 +144,9 @@ pub struct OrientReport {
     /// Largest turn of the axis, degrees, when one region of the sherd is left out of the
     /// fit (see [`region_stability`]).
     pub region_turn_deg: f64,
+    /// The part of that turn in the sherd's meridian plane, degrees (see
+    /// [`region_stability::RegionStability::largest_turn_in_meridian_deg`]).
+    pub region_turn_in_meridian_deg: f64,
     /// Where the axis passes through the sherd, the curvature radius its normals give there,
     /// millimetres (see [`verdict::axis_crossing_curvature_radius_mm`]); `None` where the
     /// axis runs clear of the sherd.
@@ -247,7 +250,9 @@ pub fn orient_automatic_with_decimated(mesh: &Mesh, decimated: Option<&Mesh>, op
     report.residual_scale_mm = fit.scale * scale_mm;
     report.raw_angle_sigma_deg = fit.angle_sigma_rad.to_degrees();
     report.competitor = verdict::best_competitor(&fit);
-    report.region_turn_deg = region_stability::leave_one_region_out(&centered, &fit, &options.halir).largest_turn_deg;
+    let stability = region_stability::leave_one_region_out(&centered, &fit, &options.halir);
+    report.region_turn_deg = stability.largest_turn_deg;
+    report.region_turn_in_meridian_deg = stability.largest_turn_in_meridian_deg;
     lap("region stability", &mut clock);
     let evidence = direction::direction_evidence(&lines, &inliers, &all_lines.points, &axis);
     if evidence.score < 0.0 {

@@ -50,6 +50,11 @@ pub struct RegionStability {
     pub largest_turn_deg: f64,
     /// The region whose absence turned the axis most, `0..region_count`.
     pub decisive_region: usize,
+    /// The part of that largest turn in the sherd's meridian plane (the plane of the axis
+    /// and the sherd's centre), degrees: the tilt that slants the profile, which a body
+    /// sherd fixes only at second order in its arc. The rest turns the axis about the
+    /// sherd's radial direction (and would slant its rills).
+    pub largest_turn_in_meridian_deg: f64,
 }
 
 /// The region (`0..count`) of every line: cells of the sherd unrolled about the axis
@@ -167,7 +172,12 @@ pub fn leave_one_region_out(
     if starts.is_empty() {
         starts.push(fit.direction);
     }
-    let turns: Vec<f64> = (0..REGION_COUNT)
+    let direction = fit.direction.normalize();
+    let centre = lines.points.iter().fold(Vector::zeros(), |sum, p| sum + p) / lines.len().max(1) as f64;
+    let offset = centre - fit.point;
+    let radial = (offset - direction * direction.dot(&offset)).try_normalize(1e-12).unwrap_or_else(|| direction.cross(&Vector::x()));
+    // (turn, its part in the meridian plane), degrees.
+    let turns: Vec<(f64, f64)> = (0..REGION_COUNT)
         .into_par_iter()
         .map(|left_out| {
             let mut rest = lines.clone();
@@ -177,28 +187,33 @@ pub fn leave_one_region_out(
                 }
             }
             match refined_direction(&rest, &starts, options) {
-                Some(direction) => direction
-                    .normalize()
-                    .dot(&fit.direction.normalize())
-                    .abs()
-                    .min(1.0)
-                    .acos()
-                    .to_degrees(),
-                None => 90.0,
+                Some(refit) => {
+                    let refit = refit.normalize() * refit.normalize().dot(&direction).signum();
+                    let turn = refit.dot(&direction).min(1.0).acos().to_degrees();
+                    (turn, meridian_tilt_deg(&radial, &refit))
+                }
+                None => (90.0, 90.0),
             }
         })
         .collect();
-    let (decisive_region, largest_turn_deg) = turns
+    let (decisive_region, &(largest_turn_deg, largest_turn_in_meridian_deg)) = turns
         .iter()
-        .copied()
         .enumerate()
-        .max_by(|a, b| a.1.total_cmp(&b.1))
-        .unwrap_or((0, 0.0));
+        .max_by(|a, b| a.1.0.total_cmp(&b.1.0))
+        .unwrap_or((0, &(0.0, 0.0)));
     RegionStability {
         region_count: REGION_COUNT,
         largest_turn_deg,
         decisive_region,
+        largest_turn_in_meridian_deg,
     }
+}
+
+/// The tilt of the unit direction `refit` towards the unit `radial` direction (the sherd's
+/// centre seen from the axis, perpendicular to it), degrees: how far it leans in the
+/// meridian plane, whatever it turned about `radial`.
+fn meridian_tilt_deg(radial: &Vector, refit: &Vector) -> f64 {
+    refit.dot(radial).clamp(-1.0, 1.0).asin().to_degrees().abs()
 }
 
 #[cfg(test)]
@@ -267,5 +282,29 @@ mod tests {
             tilted > MAX_REGION_TURN_DEG,
             "a region pulling the axis 3 degrees sideways turned it by only {tilted} deg"
         );
+    }
+
+    #[test]
+    fn the_turn_is_split_into_the_meridian_tilt_and_the_rest() {
+        let options = HalirOptions::default();
+        for tilt in [0.0, 0.05] {
+            let lines = cone_lines(tilt);
+            let (_, direction) = lines.from_scan_frame(&crate::orient::Axis::z());
+            let fit = refine_candidates(&lines, &[direction], &options).expect("fit");
+            let stability = leave_one_region_out(&lines, &fit, &options);
+            assert!(stability.largest_turn_in_meridian_deg <= stability.largest_turn_deg + 1e-9);
+            // A body patch's loose tilt is the meridian one: the corner pulling sideways
+            // (8.3 deg) moves the axis in the meridian plane by 8.1 deg.
+            if tilt > 0.0 {
+                assert!(stability.largest_turn_in_meridian_deg > 0.8 * stability.largest_turn_deg, "{stability:?}");
+            }
+        }
+        // The split itself, on known turns of the z axis, the sherd's centre along +x.
+        let radial = Vector::x();
+        let turned = |about: Vector, degrees: f64| {
+            nalgebra::UnitQuaternion::from_axis_angle(&nalgebra::Unit::new_normalize(about), degrees.to_radians()) * Vector::z()
+        };
+        assert!((meridian_tilt_deg(&radial, &turned(Vector::y(), 5.0)) - 5.0).abs() < 1e-9);
+        assert!(meridian_tilt_deg(&radial, &turned(Vector::x(), 5.0)) < 1e-9);
     }
 }

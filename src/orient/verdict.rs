@@ -217,8 +217,15 @@ pub fn judge(
     }
     // NaN (a refit that failed to give a number) is flagged too.
     if report.region_turn_deg.is_nan() || report.region_turn_deg > limits.max_region_turn_deg {
+        // Which tilt is loose tells the user what is unknown: the slant of the profile
+        // (meridian plane), or the level of the rills and rim.
+        let which = if report.region_turn_in_meridian_deg >= 0.8 * report.region_turn_deg {
+            format!(", {:.1} of them in the sherd's meridian plane: the slant of its profile is not fixed", report.region_turn_in_meridian_deg)
+        } else {
+            String::new()
+        };
         return flag(format!(
-            "the axis rests on one region of the sherd: leaving it out turns the axis by {:.1} deg (at most {:.1} deg accepted)",
+            "the axis rests on one region of the sherd: leaving it out turns the axis by {:.1} deg (at most {:.1} deg accepted){which}",
             report.region_turn_deg, limits.max_region_turn_deg
         ));
     }
