@@ -67,8 +67,9 @@ pub struct Analysis {
     pub refinement: Option<Refinement>,
     /// Measurements along the final axis, when the axis line is found (sense certain or not).
     pub measurements: Option<Measurements>,
-    /// The wheel rills traced under the final axis, longest first, also when the sherd
-    /// needs manual orientation (the longest is where to pick three points then).
+    /// The wheel rills traced under the final axis, longest first (the measurements'),
+    /// also when the sherd needs manual orientation (the longest is where to pick three
+    /// points then).
     pub rills: Vec<Rill>,
     /// Seconds spent in each step.
     pub timings: Timings,
@@ -167,16 +168,23 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
         measurements = Some(measure_with_bootstrap_mesh(&mesh, bootstrap_mesh, axis, &options.measure));
         timings.measure_s = clock.elapsed().as_secs_f64();
     }
-    let clock = Instant::now();
-    let axis = refinement.as_ref().map_or(&orientation.axis, |r| &r.axis);
-    // An orientation that found no axis at all (too few points) stands in with an
-    // arbitrary one, under which level bumps are no rills.
+    // Without measurements (a sherd that needs manual orientation) the rills are traced
+    // under the declined axis: where to pick three points. An orientation that found no
+    // axis at all (too few points) stands in with an arbitrary one, under which level
+    // bumps are no rills.
     let found_an_axis = orientation.angle_uncertainty_deg != f64::INFINITY;
-    let rills = match crate::orient::segment_surfaces(&mesh, axis) {
-        Ok(skins) if found_an_axis => trace_rills(&mesh, axis, &skins, &RillOptions::default()),
-        _ => Vec::new(),
+    let rills = match &measurements {
+        Some(measurements) => measurements.rills.clone(),
+        None if found_an_axis => {
+            let clock = Instant::now();
+            let rills = crate::orient::segment_surfaces(&mesh, &orientation.axis)
+                .map(|skins| trace_rills(&mesh, &orientation.axis, &skins, &RillOptions::default()))
+                .unwrap_or_default();
+            timings.measure_s += clock.elapsed().as_secs_f64();
+            rills
+        }
+        None => Vec::new(),
     };
-    timings.measure_s += clock.elapsed().as_secs_f64();
     Ok(Analysis { mesh, repair: repair_report, orientation, refinement, measurements, rills, timings, millimetres_per_unit: scale })
 }
 

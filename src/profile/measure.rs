@@ -11,6 +11,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::rills::{trace_rills, Rill, RillOptions};
 use super::section::{most_informative_angle, oriented_frame, profile_section};
 use crate::mesh::{planar_length, Mesh, Point};
 use crate::orient::Axis;
@@ -82,6 +83,8 @@ pub struct Measurements {
     /// [`MAX_UNFLAGGED_AXIS_INTERVAL_DEG`]. Such an axis and its figures want a look
     /// before they are used.
     pub axis_uncertain: bool,
+    /// The grooves of revolution (wheel rills) traced under the axis, longest first.
+    pub rills: Vec<Rill>,
     /// What could not be measured, and why.
     pub notes: Vec<String>,
 }
@@ -263,10 +266,22 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
 
     let (edges, outer_skin): (Vec<Edge>, Vec<bool>) =
         match PreparedSurface::new(mesh, axis, Surface::Both, options.refine.section_count) {
-            Ok(surface) => (
-                detect_edges_over(&surface, &options.refine, [MIN_MEASURED_RIM_FRACTION, EDGE_LEVEL_FRACTION]).into_iter().map(|e| e.edge).collect(),
-                surface.skins.iter().map(|s| *s == Some(Skin::Outer)).collect(),
-            ),
+            Ok(surface) => {
+                let skins: Vec<crate::orient::Skin> = surface
+                    .skins
+                    .iter()
+                    .map(|skin| match skin {
+                        Some(Skin::Inner) => crate::orient::Skin::Inner,
+                        Some(Skin::Outer) => crate::orient::Skin::Outer,
+                        None => crate::orient::Skin::Other,
+                    })
+                    .collect();
+                measurements.rills = trace_rills(mesh, axis, &skins, &RillOptions::default());
+                (
+                    detect_edges_over(&surface, &options.refine, [MIN_MEASURED_RIM_FRACTION, EDGE_LEVEL_FRACTION]).into_iter().map(|e| e.edge).collect(),
+                    surface.skins.iter().map(|s| *s == Some(Skin::Outer)).collect(),
+                )
+            }
             Err(error) => {
                 measurements.notes.push(format!("no rim or base test: {error}"));
                 (Vec::new(), vec![false; mesh.positions.len()])
