@@ -369,9 +369,20 @@ def test_real_scan(vendored, operators):
     obj = add_mesh_object("A011", scan.positions, scan.triangles)
     result = bpy.ops.sherd.orient_automatic()
     if result != {'FINISHED'}:
-        # A refusal is an answer (needs manual orientation), reported as a warning.
+        # A refusal is an answer (needs manual orientation), reported as a warning, with
+        # three vertices on the longest wheel rill selected for the manual orientation.
         assert 'WARNING' in operators.REPORTS[-1][0], operators.REPORTS[-1]
         print(f"  A011: {operators.REPORTS[-1][1]}")
+        assert "wheel rill" in operators.REPORTS[-1][1], operators.REPORTS[-1]
+        selected = np.zeros(len(obj.data.vertices), dtype=bool)
+        obj.data.vertices.foreach_get("select", selected)
+        assert selected.sum() == 3, selected.sum()
+        assert bpy.ops.sherd.orient_three_points() == {'FINISHED'}, operators.REPORTS[-1:]
+        axis = vendored.Axis(list(obj["sherd_axis_point"]), list(obj["sherd_axis_direction"]))
+        offsets = scan.positions - axis.point
+        radii = np.linalg.norm(offsets - np.outer(offsets @ axis.direction, axis.direction), axis=1)
+        assert 30.0 <= np.median(radii) <= 47.0, np.median(radii)
+        print(f"  A011: oriented from the 3 rill vertices, wall at a median {np.median(radii):.1f} mm from the axis")
         return
     direct = vendored.orient_automatic(scan)
     assert abs(np.array(obj["sherd_axis_direction"]) @ direct.axis.direction) > math.cos(math.radians(0.5))

@@ -84,6 +84,12 @@ def test_process_file_gives_the_cli_record(scan, cli_record):
         assert record[key] == cli_record[key], key
     for key in FIGURES:
         assert_close(record[key], cli_record[key], key)
+    # The wheel rills and, for a declined sherd, the three points on the longest rill.
+    assert (record["rills"] is None) == (cli_record["rills"] is None)
+    if record["rills"] is not None:
+        for key in ("count", "slope_deg", "slope_spread_deg", "longest_arc_mm"):
+            assert_close(record["rills"][key], cli_record["rills"][key], f"rills {key}")
+    assert_close(record["manual_points_on_rill"], cli_record["manual_points_on_rill"], "manual points on the rill")
     if analysis.oriented:
         assert_close(analysis.axis.point, cli_record["axis"]["point"], "axis point")
         assert_close(analysis.axis.direction, cli_record["axis"]["direction"], "axis direction")

@@ -175,7 +175,35 @@ class SHERD_OT_orient_automatic(SherdOperator, bpy.types.Operator):
             mesh, _ = library_mesh(obj)
             update(1)
             orientation = sherd().orient_automatic(mesh)
+        if not orientation.oriented and not orientation.sense_uncertain and _select_rill_points(obj, mesh):
+            self.notify({'WARNING'}, f"needs manual orientation: {orientation.reason}. Three vertices on its "
+                        "longest wheel rill are now selected: check them in Edit Mode, then Orient from 3 vertices")
+            return {'CANCELLED'}
         return _finish_orientation(self, obj, orientation, "automatic")
+
+
+def _select_rill_points(obj, mesh):
+    """Selects the vertices of ``obj`` nearest to the three points the library suggests on
+    the sherd's longest wheel rill (the pipeline's ``manual_points_on_rill``, world
+    coordinates); False, selection untouched, when it traced no rill."""
+    points = sherd().analyse(mesh).record.get("manual_points_on_rill")
+    if not points:
+        return False
+    positions = mesh.positions
+    nearest = [int(np.argmin(((positions - np.asarray(p, dtype=np.float64)) ** 2).sum(axis=1))) for p in points]
+    editing = obj.mode == 'EDIT'
+    if editing:
+        bpy.ops.object.mode_set(mode='OBJECT')
+    data = obj.data
+    selection = np.zeros(len(data.vertices), dtype=bool)
+    selection[nearest] = True
+    data.vertices.foreach_set("select", selection)
+    data.edges.foreach_set("select", np.zeros(len(data.edges), dtype=bool))
+    data.polygons.foreach_set("select", np.zeros(len(data.polygons), dtype=bool))
+    data.update()
+    if editing:
+        bpy.ops.object.mode_set(mode='EDIT')
+    return True
 
 
 class SHERD_OT_orient_three_points(SherdOperator, bpy.types.Operator):
