@@ -4,6 +4,10 @@
 #include <limits>
 
 #include <QFileInfo>
+#include <QJsonArray>
+#include <QJsonDocument>
+#include <QJsonObject>
+#include <QStringList>
 
 #include <vcg/complex/algorithms/update/bounding.h>
 #include <vcg/complex/algorithms/update/position.h>
@@ -43,6 +47,8 @@ QString axisSourceHelp()
 struct LayerMesh {
 	sherd::Mesh mesh;
 	std::vector<CMeshO::VertexPointer> vertices;
+	// The layer's matrix: `mesh` is in the frame it displays, its parameters in its own.
+	Matrix44m transform;
 };
 
 vcg::Point3d transformPoint(const Matrix44m& m, const Point3m& p)
@@ -100,15 +106,36 @@ LayerMesh layerMesh(MeshModel& model)
 			rgba.insert(rgba.end(), {v->cC()[0], v->cC()[1], v->cC()[2], v->cC()[3]});
 		mesh.set_colors(rgba);
 	}
-	return LayerMesh{std::move(mesh), std::move(vertices)};
+	return LayerMesh{std::move(mesh), std::move(vertices), cm.Tr};
 }
 
-// A fragment sherd cannot orient: the filter fails with the library's reason and what to do.
-MLException cannotOrient(const QString& reason)
+// A fragment sherd cannot orient: the filter fails with the library's reason and what to
+// do; `rills` (from rillPoints) names three points on its longest wheel rill, if any.
+MLException cannotOrient(const QString& reason, const QString& rills = QString())
 {
 	return MLException("Sherd: this fragment does not determine its axis (" + reason +
-	                   "). Orient it with Sherd: orient from three points picked on the rim or base, "
-	                   "then use the layer's z axis.");
+	                   "). Orient it with Sherd: orient from three points picked on the rim or base" + rills +
+	                   ", then use the layer's z axis.");
+}
+
+// The three points the library suggests on the longest wheel rill of a fragment it cannot
+// orient (`record_json`: the pipeline's record, its manual_points_on_rill), as the three
+// points method's parameters in the layer's own coordinates; empty when it traced no rill.
+QString rillPoints(const LayerMesh& layer, const std::string& record_json)
+{
+	QJsonArray points = QJsonDocument::fromJson(QByteArray::fromStdString(record_json))
+	                        .object().value("manual_points_on_rill").toArray();
+	if (points.size() != 3) return QString();
+	Matrix44m back = vcg::Inverse(layer.transform);
+	QStringList named;
+	for (int i = 0; i < 3; ++i) {
+		QJsonArray p = points[i].toArray();
+		vcg::Point3d local = transformPoint(back, Point3m(Scalarm(p[0].toDouble()), Scalarm(p[1].toDouble()),
+		                                                  Scalarm(p[2].toDouble())));
+		named << QString("point_%1 = (%2, %3, %4)").arg(i + 1).arg(local[0], 0, 'f', 3).arg(local[1], 0, 'f', 3)
+		             .arg(local[2], 0, 'f', 3);
+	}
+	return ", for instance these on its longest wheel rill: " + named.join(", ");
 }
 
 // The axis of the analysis filters, in the frame the layer is displayed in.
@@ -117,18 +144,14 @@ SherdAxis layerAxis(const LayerMesh& layer, int source)
 	if (source == AXIS_LAYER_FRAME) return sherd::make_axis({0, 0, 0}, {0, 0, 1});
 	if (source != AXIS_AUTOMATIC)
 		throw MLException(QString("Sherd: axis source %1 is not one of 0 (automatic), 1 (layer frame).").arg(source));
-	SherdAxis axis = sherd::make_axis({0, 0, 0}, {0, 0, 1});
-	SherdStatus status = sherd_analyse(layer.mesh.get(), nullptr, 1.0, &axis, nullptr);
-	if (status == SHERD_STATUS_NEEDS_MANUAL_ORIENTATION)
-		throw cannotOrient(QString::fromUtf8(sherd_last_error_message()));
+	sherd::Analysis analysis = sherd::analyse(layer.mesh);
+	if (analysis.status == SHERD_STATUS_NEEDS_MANUAL_ORIENTATION)
+		throw cannotOrient(QString::fromStdString(analysis.reason), rillPoints(layer, analysis.record_json));
 	// The axis line is good, only which way is up is a guess: the measurements hold, a
 	// drawing or the layer's frame may be upside down.
-	if (status == SHERD_STATUS_SENSE_UNCERTAIN) {
-		qWarning("Sherd: the sense of the axis (base to rim) is uncertain: %s", sherd_last_error_message());
-		return axis;
-	}
-	sherd::check(status);
-	return axis;
+	if (analysis.status == SHERD_STATUS_SENSE_UNCERTAIN)
+		qWarning("Sherd: the sense of the axis (base to rim) is uncertain: %s", analysis.reason.c_str());
+	return analysis.axis;
 }
 
 Matrix44m toMatrix(const std::array<double, 16>& rowMajor)
@@ -219,7 +242,9 @@ std::map<std::string, QVariant> orient(MeshModel& model, const RichParameterList
 			? sherd::orient_automatic(layer.mesh)
 			: sherd::orient_from_three_points(layer.mesh, pickedPoints(parameters, model.cm.Tr));
 		if (!found.oriented)
-			throw cannotOrient(QString::fromStdString(found.reason));
+			throw cannotOrient(QString::fromStdString(found.reason),
+			                   method == ORIENT_AUTOMATIC ? rillPoints(layer, sherd::analyse(layer.mesh).record_json)
+			                                              : QString());
 		axis = found.axis;
 		how = method == ORIENT_AUTOMATIC ? "automatic orientation" : "three points";
 		if (refine) {

@@ -5,6 +5,7 @@ through the CLI (``sherd orient --json``) or the Python binding (bindings/python
 
 import json
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -274,6 +275,15 @@ def test_real_scan(real_scan):
             ms.apply_filter("sherd_orient")
         assert message in str(raised.value)
         np.testing.assert_array_equal(ms.current_mesh().trasform_matrix(), np.eye(4))
+        # The message names three points on the longest wheel rill; given to the three
+        # points method they orient the scan.
+        text = str(raised.value)
+        found = re.findall(r"point_\d = \((-?[\d.]+), (-?[\d.]+), (-?[\d.]+)\)", text)
+        assert "longest wheel rill" in text and len(found) == 3, text
+        picked = [np.array([float(v) for v in point]) for point in found]
+        manual = load(real_scan)
+        manual.apply_filter("sherd_orient", method=1, point_1=picked[0], point_2=picked[1], point_3=picked[2])
+        assert not np.allclose(manual.current_mesh().trasform_matrix(), np.eye(4))
     # The automatic orientation alone, as the C ABI gives it; when sherd refuses it (the
     # sense of the axis undecided), its best guess is set as the layer's matrix by
     # MeshLab's own filter, as a user would after choosing the sense, and the analysis
