@@ -310,6 +310,9 @@ fn batch_reports_every_sherd_keeps_going_past_a_broken_file_exits_1_and_resumes(
     assert_eq!(run.status.code(), Some(1), "an error row makes the exit code 1: {}", String::from_utf8_lossy(&run.stderr));
     let rows = csv_rows(&output.join("report.csv"));
     assert_eq!(rows.len(), scans.len() + 1, "one row per file");
+    let header = split_csv(fs::read_to_string(output.join("report.csv")).unwrap().lines().next().unwrap());
+    assert_eq!(header[header.len() - 2..], ["rill_count", "rill_slope_deg"], "{header:?}");
+    assert!(rows.iter().all(|row| row.len() == header.len()), "every row has the header's columns");
     let broken = rows.iter().find(|r| r[0].ends_with("zz-broken.ply")).expect("the broken file has a row");
     assert!(broken[1].starts_with("error: "), "{broken:?}");
     assert!(broken[1].contains("zz-broken.ply"), "the reason names the file: {broken:?}");
