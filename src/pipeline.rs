@@ -67,10 +67,10 @@ pub struct Analysis {
     pub refinement: Option<Refinement>,
     /// Measurements along the final axis, when the axis line is found (sense certain or not).
     pub measurements: Option<Measurements>,
-    /// The wheel rills traced under the final axis, longest first (the measurements'),
-    /// also when the sherd needs manual orientation (the longest is where to pick three
-    /// points then).
-    pub rills: Vec<Rill>,
+    /// For a sherd without measurements (it needs manual orientation): the wheel rills
+    /// traced under the declined axis, longest first, where to pick three points. An
+    /// oriented sherd's are in its measurements; [`Analysis::rills`] gives either.
+    pub declined_axis_rills: Vec<Rill>,
     /// Seconds spent in each step.
     pub timings: Timings,
     /// Millimetres per unit of the scan's file (given, or declared by the file).
@@ -92,6 +92,12 @@ impl Analysis {
     /// The final axis: refined if refinement ran, else the pre-orientation's.
     pub fn axis(&self) -> &Axis {
         self.refinement.as_ref().map_or(&self.orientation.axis, |r| &r.axis)
+    }
+
+    /// The wheel rills traced under the final axis (the measurements'), or under the
+    /// declined axis of a sherd that needs manual orientation; longest first.
+    pub fn rills(&self) -> &[Rill] {
+        self.measurements.as_ref().map_or(&self.declined_axis_rills, |m| &m.rills)
     }
 
     /// True when the sherd got an axis the pipeline stands behind, sense included.
@@ -173,19 +179,24 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
     // axis at all (too few points) stands in with an arbitrary one, under which level
     // bumps are no rills.
     let found_an_axis = orientation.angle_uncertainty_deg != f64::INFINITY;
-    let rills = match &measurements {
-        Some(measurements) => measurements.rills.clone(),
-        None if found_an_axis => {
-            let clock = Instant::now();
-            let rills = crate::orient::segment_surfaces(&mesh, &orientation.axis)
-                .map(|skins| trace_rills(&mesh, &orientation.axis, &skins, &RillOptions::default()))
-                .unwrap_or_default();
-            timings.measure_s += clock.elapsed().as_secs_f64();
-            rills
-        }
-        None => Vec::new(),
-    };
-    Ok(Analysis { mesh, repair: repair_report, orientation, refinement, measurements, rills, timings, millimetres_per_unit: scale })
+    let mut declined_axis_rills = Vec::new();
+    if measurements.is_none() && found_an_axis {
+        let clock = Instant::now();
+        declined_axis_rills = crate::orient::segment_surfaces(&mesh, &orientation.axis)
+            .map(|skins| trace_rills(&mesh, &orientation.axis, &skins, &RillOptions::default()))
+            .unwrap_or_default();
+        timings.measure_s += clock.elapsed().as_secs_f64();
+    }
+    Ok(Analysis {
+        mesh,
+        repair: repair_report,
+        orientation,
+        refinement,
+        measurements,
+        declined_axis_rills,
+        timings,
+        millimetres_per_unit: scale,
+    })
 }
 
 impl PipelineOptions {
@@ -339,7 +350,7 @@ impl SherdRecord {
             Verdict::NeedsManualOrientation { reason } => {
                 record.status = STATUS_NEEDS_MANUAL.into();
                 record.reason = Some(reason.clone());
-                record.manual_points_on_rill = analysis.rills.first().map(|rill| {
+                record.manual_points_on_rill = analysis.rills().first().map(|rill| {
                     three_points_on(rill).map(|p| (p.coords / analysis.millimetres_per_unit).into())
                 });
                 return record;
@@ -365,7 +376,7 @@ impl SherdRecord {
             record.wall_thickness_mm = m.wall_thickness_mm;
             record.capacity_litres = m.capacity_litres;
         }
-        record.rills = rill_check(&analysis.rills);
+        record.rills = rill_check(analysis.rills());
         record
     }
 
