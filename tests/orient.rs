@@ -410,3 +410,33 @@ fn the_sfspp_sherds_are_oriented_near_their_reference_or_flagged() {
     }
     println!("{oriented} of 4 pieces oriented");
 }
+
+/// The axis line the tool gives as usable (oriented, or only its sense in doubt) is never
+/// grossly wrong on the 34-fragment breakage of `examples/refine_accuracy.rs`: vessel 1's
+/// fragment 10 and vessel 6's fragment 21 (the belly of a jar, nearly a surface of
+/// revolution about the horizontal line through its profile's centre too) had lines 90
+/// degrees off with only the sense in doubt, and vessel 7's fragments 0 and 18 (small rim
+/// pieces, 136 and 174 vertices) were oriented 73 degrees off, about an axis through their
+/// lip that their normals missed by 2.8-3.6 degrees.
+#[test]
+fn no_usable_axis_line_is_grossly_wrong_on_the_refinement_corpus() {
+    use sherd::synth::{generate_vessel, VesselOptions};
+    let options = VesselOptions { fragment_count: 34, random_motion: true, ..Default::default() };
+    let mut usable = 0;
+    let mut wrong = Vec::new();
+    for seed in [1u64, 6, 7] {
+        let vessel = generate_vessel(seed, &options);
+        for (k, sherd) in vessel.fragments.iter().enumerate().filter(|(_, s)| s.truth.hard_case.is_none()) {
+            let Ok(orientation) = orient_automatic(&sherd.mesh, &OrientOptions::default()) else { continue };
+            if orientation.verdict.has_axis_line() {
+                usable += 1;
+                let angle = orientation.axis.line_angle_to_deg(&sherd.truth.axis);
+                if angle > 15.0 {
+                    wrong.push(format!("vessel {seed} fragment {k}: {angle:.1} deg, {:?}", orientation.verdict));
+                }
+            }
+        }
+    }
+    assert!(usable >= 40, "only {usable} usable axis lines of 3 vessels");
+    assert!(wrong.is_empty(), "usable axis lines more than 15 deg off: {wrong:#?}");
+}
