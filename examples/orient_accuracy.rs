@@ -8,10 +8,9 @@
 use std::path::{Path, PathBuf};
 
 use sherd::mesh::io::read_mesh;
-use sherd::mesh::{Mesh, Point, Vector};
 use rayon::prelude::*;
-use sherd::orient::accuracy::{evaluate, FragmentOutcome, Summary};
-use sherd::orient::{orient_automatic, Axis, OrientOptions, Orientation};
+use sherd::orient::accuracy::{evaluate, read_sfspp_pot_c, FragmentOutcome, SfsppPiece, Summary};
+use sherd::orient::{orient_automatic, OrientOptions, Orientation};
 use sherd::synth::{generate_vessel, synthetic_sherd, HardCase, SherdOptions, SherdPart, VesselOptions};
 
 fn shared_data() -> PathBuf {
@@ -30,43 +29,22 @@ fn verdict_text(orientation: &Orientation) -> String {
 /// derived per-piece reference axis (known to about 3 deg / 2 mm).
 fn real_sfspp(options: &OrientOptions) {
     let folder = shared_data().join("sfspp_pot_C");
-    let reference_file = folder.join("ground_truth/reference_axis_derived.txt");
-    let Ok(reference_text) = std::fs::read_to_string(&reference_file) else {
-        println!("SKIP SfS++: {} absent", reference_file.display());
-        return;
+    let pieces = match read_sfspp_pot_c(&folder) {
+        Ok(pieces) => pieces,
+        Err(error) => return println!("SKIP SfS++: {error}"),
     };
     println!("\n## SfS++ pot C (reference A, per piece; tolerance of the reference ~3 deg / 2 mm)");
     println!("| piece | points | line angle deg | axis offset at sherd mm | verdict |");
     println!("|---|---|---|---|---|");
-    for piece in 1..=4 {
-        let name = format!("Pot_C_Piece_0{piece}");
-        // The first block of per-piece lines is reference A.
-        let Some(line) = reference_text.lines().find(|l| l.starts_with(&format!("{name} "))) else { continue };
-        let values: Vec<f64> = line.split_whitespace().skip(1).filter_map(|t| t.parse().ok()).collect();
-        let truth = Axis::new(Point::new(values[0], values[1], values[2]), Vector::new(values[3], values[4], values[5]));
-        let mut positions = Vec::new();
-        let mut normals = Vec::new();
-        for surface in 0..2 {
-            let pattern = format!("{name}_Surface_{surface}.");
-            let Some(path) = std::fs::read_dir(folder.join("surfaces_subsample"))
-                .ok()
-                .and_then(|dir| dir.flatten().map(|e| e.path()).find(|p| p.to_string_lossy().contains(&pattern)))
-            else {
-                continue;
-            };
-            let mesh = read_mesh(&path).expect("SfS++ surface readable");
-            positions.extend(mesh.positions.iter().copied());
-            normals.extend(mesh.normals.expect("SfS++ surfaces carry normals"));
-        }
-        let cloud = Mesh::from_points_and_normals(positions, normals);
+    for (piece, SfsppPiece { cloud, reference, .. }) in (1..).zip(pieces) {
         match orient_automatic(&cloud, options) {
             Ok(orientation) => {
                 let centroid = cloud.centroid().unwrap();
-                let offset = truth.distance_to(&orientation.axis.closest_point(&centroid));
+                let offset = reference.distance_to(&orientation.axis.closest_point(&centroid));
                 println!(
                     "| {piece} | {} | {:.2} | {:.2} | {} |",
                     cloud.vertex_count(),
-                    orientation.axis.line_angle_to_deg(&truth),
+                    orientation.axis.line_angle_to_deg(&reference),
                     offset,
                     verdict_text(&orientation)
                 );

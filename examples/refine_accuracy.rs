@@ -14,7 +14,8 @@
 //! perfect solids of revolution: what is left is the criteria's own error),
 //! `REFINE_ACCURACY_NOISE_MM=N` the scan noise (default 0.02 mm),
 //! `REFINE_ACCURACY_START_TILT_DEG=D` the start's tilt (default 3 degrees),
-//! `REFINE_ACCURACY_DUMP=1` prints a line per fragment on stderr.
+//! `REFINE_ACCURACY_DUMP=1` prints a line per fragment on stderr (for the pipeline: the
+//! pre-orientation's and the refined axis's errors).
 
 use std::time::Instant;
 
@@ -78,7 +79,23 @@ fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
             Ok(orientation) => {
                 let flagged = !orientation.verdict.is_oriented();
                 match refine(&sherd.mesh, &orientation.axis, &RefineOptions::default()) {
-                    Ok(r) => (r.axis, flagged || r.report.flagged, format!("{:?}", r.report.method)),
+                    Ok(r) => {
+                        if std::env::var_os("REFINE_ACCURACY_DUMP").is_some() {
+                            eprintln!(
+                                "PIPE {seed} {:?} {:?} oriented {} orient angle {:.2} dist {:.2} refined angle {:.2} dist {:.2} refine_flagged {} sector {:.0}",
+                                truth.part,
+                                r.report.method,
+                                orientation.verdict.is_oriented(),
+                                orientation.axis.line_angle_to_deg(&truth.axis),
+                                mean_point_distance_mm(&sherd.mesh.positions, &orientation.axis, &truth.axis),
+                                r.axis.line_angle_to_deg(&truth.axis),
+                                mean_point_distance_mm(&sherd.mesh.positions, &r.axis, &truth.axis),
+                                r.report.flagged,
+                                truth.sector_angle_deg
+                            );
+                        }
+                        (r.axis, flagged || r.report.flagged, format!("{:?}", r.report.method))
+                    }
                     Err(_) => (orientation.axis, true, "refine failed".into()),
                 }
             }
@@ -206,53 +223,24 @@ fn main() {
 /// angle to the reference before and after. Skipped when the data are absent.
 fn real_sherds() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/sfspp_pot_C");
-    let Ok(references) = std::fs::read_to_string(root.join("ground_truth/reference_axis_derived.txt")) else {
-        println!("\nSfS++ data absent ({}): skipped", root.display());
-        return;
+    let pieces = match sherd::orient::accuracy::read_sfspp_pot_c(&root) {
+        Ok(pieces) => pieces,
+        Err(error) => return println!("\nSfS++ data absent or unreadable ({error}): skipped"),
     };
     println!("\n| SfS++ Pot C piece | points | start angle to reference (deg) | circles | tangent/auto | profile |");
     println!("|---|---|---|---|---|---|");
-    // The reference in each piece's own scan frame is the first line naming the piece.
-    let mut seen = std::collections::HashSet::new();
-    for line in references.lines().filter(|l| l.starts_with("Pot_C_Piece_0")) {
-        let fields: Vec<&str> = line.split_whitespace().collect();
-        if fields.len() != 7 || !seen.insert(fields[0].to_string()) {
-            continue;
-        }
-        let values: Vec<f64> = fields[1..].iter().filter_map(|v| v.parse().ok()).collect();
-        let reference = Axis::new(
-            sherd::mesh::Point::new(values[0], values[1], values[2]),
-            Vector::new(values[3], values[4], values[5]),
-        );
-        let mut positions = Vec::new();
-        let mut normals = Vec::new();
-        for surface in 0..2 {
-            let pattern = format!("{}_Surface_{surface}.first", fields[0]);
-            let Some(file) = std::fs::read_dir(root.join("surfaces_subsample"))
-                .ok()
-                .and_then(|d| d.flatten().find(|e| e.file_name().to_string_lossy().starts_with(&pattern)))
-            else {
-                continue;
-            };
-            for row in std::fs::read_to_string(file.path()).unwrap_or_default().lines() {
-                let v: Vec<f64> = row.split_whitespace().filter_map(|x| x.parse().ok()).collect();
-                if v.len() == 6 {
-                    positions.push(sherd::mesh::Point::new(v[0], v[1], v[2]));
-                    normals.push(Vector::new(v[3], v[4], v[5]));
-                }
-            }
-        }
-        let mesh = sherd::mesh::Mesh::from_points_and_normals(positions, normals);
-        let start = perturbed(&reference, 1);
-        let angle = |criterion: Criterion| match refine(&mesh, &start, &RefineOptions { criterion, ..Default::default() }) {
-            Ok(r) => format!("{:.2}", r.axis.line_angle_to_deg(&reference)),
+    for piece in pieces {
+        let (mesh, reference) = (&piece.cloud, &piece.reference);
+        let start = perturbed(reference, 1);
+        let angle = |criterion: Criterion| match refine(mesh, &start, &RefineOptions { criterion, ..Default::default() }) {
+            Ok(r) => format!("{:.2}", r.axis.line_angle_to_deg(reference)),
             Err(e) => format!("error: {e}"),
         };
         println!(
             "| {} | {} | {:.2} | {} | {} | {} |",
-            fields[0],
+            piece.name,
             mesh.vertex_count(),
-            start.line_angle_to_deg(&reference),
+            start.line_angle_to_deg(reference),
             angle(Criterion::Circles),
             angle(Criterion::Auto),
             angle(Criterion::Profile)

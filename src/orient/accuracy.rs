@@ -235,3 +235,88 @@ impl Summary {
         "| set | n | median deg | p95 deg | median deg (unflagged) | p95 deg (unflagged) | mean point dist mm (unflagged) | flagged | line refused | sense uncertain | wrong >5deg unflagged | wrong >4mm unflagged | sense right (unflagged) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|".into()
     }
 }
+
+/// One sherd of the SfS++ pot C dataset: both skins' subsampled points with their normals
+/// as one point cloud, and its reference axis.
+#[derive(Clone, Debug)]
+pub struct SfsppPiece {
+    /// `Pot_C_Piece_01`..`Pot_C_Piece_04`.
+    pub name: String,
+    /// Both skins' points with normals, in the piece's own scan frame.
+    pub cloud: crate::mesh::Mesh,
+    /// Reference A of `ground_truth/reference_axis_derived.txt`, in the same frame
+    /// (derived from the assembled pot, known to about 3 degrees and 2 mm).
+    pub reference: super::Axis,
+}
+
+/// The four sherds of `folder` (the dataset's `sfspp_pot_C`: `ground_truth/` and
+/// `surfaces_subsample/`), the examples' and tests' one reader of it. An error names the
+/// file or line that is missing or malformed.
+pub fn read_sfspp_pot_c(folder: &std::path::Path) -> crate::Result<Vec<SfsppPiece>> {
+    use crate::mesh::{Point, Vector};
+    let reference_path = folder.join("ground_truth/reference_axis_derived.txt");
+    let references = std::fs::read_to_string(&reference_path).map_err(|e| crate::Error::io(&reference_path, e))?;
+    let surfaces = folder.join("surfaces_subsample");
+    let mut surface_files: Vec<std::path::PathBuf> = std::fs::read_dir(&surfaces)
+        .map_err(|e| crate::Error::io(&surfaces, e))?
+        .flatten()
+        .map(|entry| entry.path())
+        .collect();
+    surface_files.sort();
+    (1..=4)
+        .map(|piece| {
+            let name = format!("Pot_C_Piece_0{piece}");
+            // The file lists reference A first, then other derivations: the first line
+            // naming the piece is reference A, in the piece's own frame.
+            let (number, line) = references
+                .lines()
+                .enumerate()
+                .find(|(_, line)| line.starts_with(&format!("{name} ")))
+                .ok_or_else(|| crate::Error::parse(reference_path.display().to_string(), "file", format!("no line for {name}")))?;
+            let values: Vec<f64> = line.split_whitespace().skip(1).filter_map(|value| value.parse().ok()).collect();
+            if values.len() != 6 {
+                return Err(crate::Error::parse(
+                    reference_path.display().to_string(),
+                    format!("line {}", number + 1),
+                    format!("{name}: expected a point and a direction (6 numbers), found {} numbers", values.len()),
+                ));
+            }
+            let reference = super::Axis::new(Point::new(values[0], values[1], values[2]), Vector::new(values[3], values[4], values[5]));
+            let (mut positions, mut normals) = (Vec::new(), Vec::new());
+            for path in surface_files.iter().filter(|p| p.file_name().is_some_and(|f| f.to_string_lossy().starts_with(&format!("{name}_Surface_")))) {
+                let skin = crate::mesh::io::read_mesh(path)?;
+                let skin_normals = skin.normals.ok_or_else(|| crate::Error::parse(path.display().to_string(), "header", "the surface carries no normals"))?;
+                positions.extend(skin.positions);
+                normals.extend(skin_normals);
+            }
+            if positions.is_empty() {
+                return Err(crate::Error::io(surfaces.join(format!("{name}_Surface_*")), std::io::ErrorKind::NotFound.into()));
+            }
+            Ok(SfsppPiece { name, cloud: crate::mesh::Mesh::from_points_and_normals(positions, normals), reference })
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_missing_or_malformed_sfspp_folder_is_an_error_naming_the_file_and_line() {
+        let folder = tempfile::tempdir().unwrap();
+        let missing = read_sfspp_pot_c(folder.path()).unwrap_err().to_string();
+        assert!(missing.contains("reference_axis_derived.txt"), "{missing}");
+        std::fs::create_dir_all(folder.path().join("ground_truth")).unwrap();
+        std::fs::create_dir_all(folder.path().join("surfaces_subsample")).unwrap();
+        std::fs::write(
+            folder.path().join("ground_truth/reference_axis_derived.txt"),
+            "# reference A\nPot_C_Piece_01 0 0 0 0 0\n",
+        )
+        .unwrap();
+        let malformed = read_sfspp_pot_c(folder.path()).unwrap_err().to_string();
+        assert!(malformed.contains("line 2") && malformed.contains("found 5 numbers"), "{malformed}");
+        std::fs::write(folder.path().join("ground_truth/reference_axis_derived.txt"), "Pot_C_Piece_01 0 0 0 0 0 1\n").unwrap();
+        let no_surface = read_sfspp_pot_c(folder.path()).unwrap_err().to_string();
+        assert!(no_surface.contains("Pot_C_Piece_01_Surface_*"), "{no_surface}");
+    }
+}
