@@ -1,7 +1,8 @@
 //! sherd: orient 3D scans of archaeological pottery fragments and draw them as
 //! archaeological illustrations.
 //!
-//! The crate is a pipeline of layers, each depending only on the ones listed before it:
+//! The crate is a pipeline of layers, each depending only on the ones listed before it
+//! (and on [`statistics`], the order statistics they share):
 //!
 //! * [`mesh`]: the [`mesh::Mesh`] type, scan readers and writers, repair, normals,
 //!   decimation, smoothing, spatial queries.
@@ -16,6 +17,7 @@
 //! * [`ffi`]: the stable C ABI; no algorithm lives there.
 
 pub mod error;
+pub mod statistics;
 pub mod mesh;
 pub mod synth;
 pub mod orient;

@@ -5,6 +5,7 @@
 use serde::Serialize;
 
 use super::{mean_point_distance_mm, orient_automatic, OrientOptions, Orientation};
+use crate::statistics::nearest_rank_quantile;
 use crate::synth::{SherdPart, SynthSherd};
 
 /// A fragment counts as wrong above this mean point distance (the paper's 4 mm).
@@ -178,14 +179,6 @@ pub struct Summary {
     pub sense_correct_fraction: f64,
 }
 
-fn quantile(values: &mut [f64], q: f64) -> f64 {
-    if values.is_empty() {
-        return f64::NAN;
-    }
-    values.sort_unstable_by(f64::total_cmp);
-    values[((values.len() - 1) as f64 * q).round() as usize]
-}
-
 impl Summary {
     /// Summarises `outcomes`.
     pub fn of(outcomes: &[FragmentOutcome]) -> Summary {
@@ -197,12 +190,12 @@ impl Summary {
         let kept_count = unflagged.len().max(1) as f64;
         Summary {
             count: outcomes.len(),
-            median_angle_deg: quantile(&mut all, 0.5),
-            p95_angle_deg: quantile(&mut all, 0.95),
-            median_angle_unflagged_deg: quantile(&mut kept, 0.5),
-            p95_angle_unflagged_deg: quantile(&mut kept, 0.95),
+            median_angle_deg: nearest_rank_quantile(&mut all, 0.5),
+            p95_angle_deg: nearest_rank_quantile(&mut all, 0.95),
+            median_angle_unflagged_deg: nearest_rank_quantile(&mut kept, 0.5),
+            p95_angle_unflagged_deg: nearest_rank_quantile(&mut kept, 0.95),
             mean_point_distance_unflagged_mm: unflagged.iter().map(|o| o.mean_point_distance_mm).sum::<f64>() / kept_count,
-            median_point_distance_mm: quantile(&mut distances, 0.5),
+            median_point_distance_mm: nearest_rank_quantile(&mut distances, 0.5),
             flagged_fraction: outcomes.iter().filter(|o| o.flagged).count() as f64 / n,
             sense_uncertain_fraction: outcomes.iter().filter(|o| o.sense_uncertain).count() as f64 / n,
             wrong_angle_unflagged_fraction: outcomes.iter().filter(|o| o.wrong_angle_unflagged()).count() as f64 / n,

@@ -21,6 +21,7 @@ use serde::{Deserialize, Serialize};
 use super::axis::Axis;
 use super::normal_lines::NormalLines;
 use crate::mesh::{Point, Vector};
+use crate::statistics::{upper_median, weighted_median, weighted_quantile};
 
 /// The evidence for the sense of an axis.
 #[derive(Clone, Debug)]
@@ -217,7 +218,7 @@ pub fn profile_ends(points: &[Point], axis: &Axis) -> Option<ProfileEnds> {
         let radii: Vec<f64> = full.iter().map(|&k| ends[k].expect("counted").1[0]).collect();
         let heights: Vec<f64> = full.iter().map(|&k| ends[k].expect("counted").1[1]).collect();
         let (spread, fraction) = level_measures(&values, &lever, level_band_mm(point_spacing_mm));
-        (spread, fraction, [median(&radii), median(&heights)])
+        (spread, fraction, [upper_median(&radii), upper_median(&heights)])
     };
     let (upper_spread_mm, upper_level_fraction, upper) = end(&upper, 1.0);
     let (lower_spread_mm, lower_level_fraction, lower) = end(&lower, -1.0);
@@ -271,9 +272,9 @@ fn level_measures(values: &[f64], lever: &[[f64; 2]], band_mm: f64) -> (f64, f64
             for ((out, v), l) in detilted.iter_mut().zip(values).zip(lever) {
                 *out = v - tilt[0] * l[0] - tilt[1] * l[1];
             }
-            let centre = median(&detilted);
+            let centre = upper_median(&detilted);
             let deviations: Vec<f64> = detilted.iter().map(|v| (v - centre).abs()).collect();
-            best_spread = best_spread.min(median(&deviations));
+            best_spread = best_spread.min(upper_median(&deviations));
             // The outermost but one, so that a single spike is not taken for the edge.
             let mut sorted = detilted.clone();
             sorted.sort_by(|a, b| b.total_cmp(a));
@@ -430,33 +431,6 @@ fn combine(cues: SenseCues, level_text: String) -> DirectionEvidence {
         return DirectionEvidence { score: cues.opening, cue, cues };
     }
     DirectionEvidence { score: 0.0, cue: "no cue to the sense: no floor, no level edge, no slope".into(), cues }
-}
-
-fn median(values: &[f64]) -> f64 {
-    let mut sorted = values.to_vec();
-    sorted.sort_unstable_by(f64::total_cmp);
-    sorted[sorted.len() / 2]
-}
-
-fn weighted_quantile(values: impl Iterator<Item = (f64, f64)>, quantile: f64) -> f64 {
-    let mut pairs: Vec<(f64, f64)> = values.collect();
-    if pairs.is_empty() {
-        return f64::NAN;
-    }
-    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let target = pairs.iter().map(|p| p.1).sum::<f64>() * quantile;
-    let mut running = 0.0;
-    for (v, w) in &pairs {
-        running += w;
-        if running >= target {
-            return *v;
-        }
-    }
-    pairs[pairs.len() - 1].0
-}
-
-fn weighted_median(values: impl Iterator<Item = (f64, f64)>) -> f64 {
-    weighted_quantile(values, 0.5)
 }
 
 #[cfg(test)]

@@ -5,6 +5,8 @@
 //! held fixed (Tukey biweight, `c = 4.685`, 95% efficiency at the normal), computed by
 //! iteratively reweighted least squares.
 
+use crate::statistics::weighted_median_abs;
+
 /// Tuning constant of the S-scale (50% breakdown).
 pub const S_SCALE_TUNING: f64 = 1.547;
 /// Tuning constant of the M-step (95% Gaussian efficiency).
@@ -30,24 +32,6 @@ pub fn tukey_weight(t: f64, c: f64) -> f64 {
         let v = 1.0 - u * u;
         v * v
     }
-}
-
-/// Weighted median of `|values|` (weights need not be normalised).
-pub fn weighted_median_abs(values: &[f64], weights: &[f64]) -> f64 {
-    let mut pairs: Vec<(f64, f64)> = values.iter().zip(weights).filter(|(_, w)| **w > 0.0).map(|(v, w)| (v.abs(), *w)).collect();
-    if pairs.is_empty() {
-        return 0.0;
-    }
-    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let half = pairs.iter().map(|p| p.1).sum::<f64>() * 0.5;
-    let mut running = 0.0;
-    for (v, w) in &pairs {
-        running += w;
-        if running >= half {
-            return *v;
-        }
-    }
-    pairs.last().map_or(0.0, |p| p.0)
 }
 
 /// The M-scale of the residuals: the `s` solving `Σ w ρ(r/s) = ½ Σ w` with Tukey's

@@ -20,6 +20,7 @@ use rayon::prelude::*;
 use super::halir::{HalirFit, HalirOptions, refined_direction};
 use super::line_complex::CenteredLines;
 use crate::mesh::Vector;
+use crate::statistics::upper_median;
 
 /// Number of regions the sherd is cut into: enough that one region is a local part of the
 /// sherd (a sixth of it), few enough that each region left out still leaves most of the
@@ -84,7 +85,7 @@ pub fn region_labels(
         heights.push(q.dot(&direction));
         radii.push(x.hypot(y));
     }
-    let arc_length = (spread(&angles) * median(&radii)).max(1e-12);
+    let arc_length = (spread(&angles) * upper_median(&radii)).max(1e-12);
     let height = spread(&heights).max(1e-12);
     // The factorisation of `count` into slices x bands whose cells are closest to square.
     let slices = (1..=count)
@@ -130,12 +131,6 @@ fn spread(values: &[f64]) -> f64 {
             (l.min(*v), h.max(*v))
         });
     high - low
-}
-
-fn median(values: &[f64]) -> f64 {
-    let mut sorted = values.to_vec();
-    sorted.sort_unstable_by(f64::total_cmp);
-    sorted[sorted.len() / 2]
 }
 
 /// For each index of `members`, its bin `0..bins` by rank of `values` (equal counts);

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use super::axis::Axis;
 use super::halir::HalirFit;
-use super::mm_regression::weighted_median_abs;
+use crate::statistics::weighted_median_abs;
 use super::normal_lines::NormalLines;
 use crate::mesh::Point;
 use super::line_complex::CenteredLines;

@@ -159,9 +159,8 @@ fn trace_skin(mesh: &Mesh, skin: Skin, vertices: &[(usize, f64, f64, f64)], opti
     if vertices.len() < 50 || !(options.strip_width_mm > 0.0 && options.bin_mm > 0.0) {
         return Vec::new();
     }
-    let mut radii: Vec<f64> = vertices.iter().map(|v| v.1).collect();
-    radii.sort_by(f64::total_cmp);
-    let median_radius = radii[radii.len() / 2];
+    let radii: Vec<f64> = vertices.iter().map(|v| v.1).collect();
+    let median_radius = crate::statistics::upper_median(&radii);
     // Into the wall is away from the axis on the inner skin, towards it on the outer.
     let into_wall = if skin == Skin::Inner { -1.0 } else { 1.0 };
     let arc_of = |angle: f64| angle * median_radius;
@@ -308,8 +307,7 @@ fn rill_of(skin: Skin, chain: &[(usize, Groove)]) -> Rill {
         .sum::<f64>()
         / n)
         .sqrt();
-    let mut depths: Vec<f64> = chain.iter().map(|(_, g)| g.depth_mm).collect();
-    depths.sort_by(f64::total_cmp);
+    let depths: Vec<f64> = chain.iter().map(|(_, g)| g.depth_mm).collect();
     Rill {
         skin,
         points: chain.iter().map(|(_, g)| [g.bottom.x, g.bottom.y, g.bottom.z]).collect(),
@@ -317,7 +315,7 @@ fn rill_of(skin: Skin, chain: &[(usize, Groove)]) -> Rill {
         radius_mm: radius,
         height_mm: mean_height,
         slope_deg: slope.atan().to_degrees(),
-        depth_mm: depths[depths.len() / 2],
+        depth_mm: crate::statistics::upper_median(&depths),
         straightness_rms_mm: straightness,
     }
 }

@@ -4,7 +4,8 @@
 //! so the wall thickness does not count as variance when both skins are used.
 
 use super::objective::Objective;
-use super::sections::{quantile, AxisParameters, CandidateFrame, HorizontalSection, PreparedSurface};
+use super::sections::{AxisParameters, CandidateFrame, HorizontalSection, PreparedSurface};
+use crate::statistics::quantile;
 use crate::mesh::planar_length;
 
 /// Sections with fewer points are skipped (the original skips 5 or fewer).

@@ -15,6 +15,7 @@ use serde::{Deserialize, Serialize};
 use crate::mesh::topology::{Topology, UnionFind};
 use crate::mesh::{planar_length, Mesh, Point, Vector};
 use crate::orient::Axis;
+use crate::statistics::quantile;
 use crate::{Error, Result};
 
 /// Skin triangles cut by one task of [`PreparedSurface::horizontal_sections`]: small
@@ -361,29 +362,6 @@ fn skins_by_smooth_regions(mesh: &Mesh, points: &[Point]) -> Vec<Option<Skin>> {
     skins.into_iter().map(Option::flatten).collect()
 }
 
-/// The `fraction` quantile of `values`, interpolated linearly between the two nearest
-/// ranks (reorders `values` in place).
-///
-/// By selection, not by sorting: the criteria take a median per section at every
-/// evaluation, and only the one or two ranks around the quantile are needed. The
-/// value is the same, bit for bit, as from a full sort: `total_cmp` is a total order
-/// whose equal elements are identical.
-pub fn quantile(values: &mut [f64], fraction: f64) -> f64 {
-    if values.is_empty() {
-        return f64::NAN;
-    }
-    let position = fraction.clamp(0.0, 1.0) * (values.len() - 1) as f64;
-    let (low, high) = (position.floor() as usize, position.ceil() as usize);
-    let (_, &mut low_value, above) = values.select_nth_unstable_by(low, f64::total_cmp);
-    let high_value = if high == low {
-        low_value
-    } else {
-        // The next rank is the least of the elements selected above `low`.
-        above.iter().copied().min_by(f64::total_cmp).expect("high < len, so some element lies above low")
-    };
-    low_value + (high_value - low_value) * (position - low as f64)
-}
-
 impl PreparedSurface {
     /// Prepares `mesh` around `start` for `surface`, with `section_count` horizontal
     /// sections (`None`: as many as the mesh resolution allows, at least 12).
@@ -697,31 +675,6 @@ mod tests {
             assert!((a - b).abs() < 1e-9, "{parameters:?} vs {back:?}");
         }
         assert!(prepared.axis_of(&[0.0; 4]).line_angle_to_deg(&start) < 1e-9);
-    }
-
-    #[test]
-    fn quantile_by_selection_equals_the_sorted_quantile_bit_for_bit() {
-        // Ties, negative zeros, both parities of length, every interpolation position.
-        let mut state = 12345u64;
-        for length in 1..40 {
-            let values: Vec<f64> = (0..length)
-                .map(|_| {
-                    state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
-                    let v = (((state >> 33) % 17) as f64 - 8.0) * 0.37;
-                    if v == 0.0 && state & 1 == 1 { -0.0 } else { v }
-                })
-                .collect();
-            for fraction in [0.0, 0.05, 0.25, 0.5, 0.77, 0.95, 1.0] {
-                let mut sorted = values.clone();
-                sorted.sort_unstable_by(f64::total_cmp);
-                let position = fraction * (length - 1) as f64;
-                let (low, high) = (position.floor() as usize, position.ceil() as usize);
-                let expected = sorted[low] + (sorted[high] - sorted[low]) * (position - low as f64);
-                let found = quantile(&mut values.clone(), fraction);
-                assert_eq!(found.to_bits(), expected.to_bits(), "{values:?} at {fraction}");
-            }
-        }
-        assert!(quantile(&mut [], 0.5).is_nan());
     }
 
     /// Every skin triangle cut by every plane, or every skin vertex tested against every

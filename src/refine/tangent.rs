@@ -213,7 +213,7 @@ impl TangentObjective {
         // below the rim, inside epsilon, would otherwise tip a plane whose other points lie
         // near one chord about that chord.
         let mut near: Vec<f64> = points.iter().map(|p| p.z).filter(|z| (z - extreme).abs() < self.tolerance_mm).collect();
-        let level_height = super::sections::quantile(&mut near, 0.5);
+        let level_height = crate::statistics::quantile(&mut near, 0.5);
         let mut normal = nalgebra::Matrix3::<f64>::zeros();
         let mut right = nalgebra::Vector3::<f64>::zeros();
         let mut sections = 0;
@@ -330,10 +330,10 @@ pub fn edge_evidence_anchored(
         Edge::Base => extremes.iter().copied().fold(f64::INFINITY, f64::min),
     };
     let mut near_top: Vec<f64> = extremes.iter().copied().filter(|z| (z - top).abs() <= tolerance_mm).collect();
-    let median = super::sections::quantile(if from_top { &mut near_top } else { &mut extremes }, 0.5);
+    let median = crate::statistics::quantile(if from_top { &mut near_top } else { &mut extremes }, 0.5);
     let level: Vec<f64> = extremes.iter().map(|z| (z - median).abs()).filter(|d| *d <= tolerance_mm).collect();
     let mut deviations = level.clone();
-    let spread = if deviations.is_empty() { f64::INFINITY } else { super::sections::quantile(&mut deviations, 0.5) };
+    let spread = if deviations.is_empty() { f64::INFINITY } else { crate::statistics::quantile(&mut deviations, 0.5) };
     EdgeEvidence { edge, level_fraction: level.len() as f64 / extremes.len() as f64, spread_mm: spread }
 }
 

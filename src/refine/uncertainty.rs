@@ -25,7 +25,8 @@ use serde::{Deserialize, Serialize};
 
 use super::circles::CirclesObjective;
 use super::objective::{minimize, FreeParameters, Objective, SearchSettings};
-use super::sections::{quantile, AxisParameters, PreparedSurface};
+use super::sections::{AxisParameters, PreparedSurface};
+use crate::statistics::quantile;
 use super::tangent::TangentObjective;
 use super::{
     choose_criterion, place_where_sections_allow, place_with, radial_curvature, search_shifts, Criterion, RefineOptions,

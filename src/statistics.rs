@@ -1,0 +1,118 @@
+//! The order statistics the layers share: quantiles, medians and weighted medians. They
+//! live at the crate's root because the orientation and the refinement both need them
+//! and neither may depend on the other's code.
+
+/// The `fraction` quantile of `values`, interpolated linearly between the two nearest
+/// ranks (reorders `values` in place).
+///
+/// By selection, not by sorting: the criteria take a median per section at every
+/// evaluation, and only the one or two ranks around the quantile are needed. The
+/// value is the same, bit for bit, as from a full sort: `total_cmp` is a total order
+/// whose equal elements are identical.
+pub fn quantile(values: &mut [f64], fraction: f64) -> f64 {
+    if values.is_empty() {
+        return f64::NAN;
+    }
+    let position = fraction.clamp(0.0, 1.0) * (values.len() - 1) as f64;
+    let (low, high) = (position.floor() as usize, position.ceil() as usize);
+    let (_, &mut low_value, above) = values.select_nth_unstable_by(low, f64::total_cmp);
+    let high_value = if high == low {
+        low_value
+    } else {
+        // The next rank is the least of the elements selected above `low`.
+        above.iter().copied().min_by(f64::total_cmp).expect("high < len, so some element lies above low")
+    };
+    low_value + (high_value - low_value) * (position - low as f64)
+}
+
+/// The value of rank `round((n - 1) * fraction)` of `values` (sorts `values` in place):
+/// a quantile that is always one of the values, as the accuracy tables report them; NaN
+/// for no values.
+pub fn nearest_rank_quantile(values: &mut [f64], fraction: f64) -> f64 {
+    if values.is_empty() {
+        return f64::NAN;
+    }
+    values.sort_unstable_by(f64::total_cmp);
+    values[((values.len() - 1) as f64 * fraction.clamp(0.0, 1.0)).round() as usize]
+}
+
+/// The upper median of `values` (rank `n / 2` of the sorted values: one of the values
+/// even for an even count). Panics on no values: callers test for them first.
+pub fn upper_median(values: &[f64]) -> f64 {
+    let mut sorted = values.to_vec();
+    sorted.sort_unstable_by(f64::total_cmp);
+    sorted[sorted.len() / 2]
+}
+
+/// The weighted `fraction` quantile of `(value, weight)` pairs: the least value whose
+/// cumulative weight (values ascending) reaches `fraction` of the total; NaN for none.
+pub fn weighted_quantile(values: impl Iterator<Item = (f64, f64)>, fraction: f64) -> f64 {
+    let mut pairs: Vec<(f64, f64)> = values.collect();
+    if pairs.is_empty() {
+        return f64::NAN;
+    }
+    pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let target = pairs.iter().map(|p| p.1).sum::<f64>() * fraction;
+    let mut running = 0.0;
+    for (v, w) in &pairs {
+        running += w;
+        if running >= target {
+            return *v;
+        }
+    }
+    pairs[pairs.len() - 1].0
+}
+
+/// The weighted median of `(value, weight)` pairs ([`weighted_quantile`] at one half).
+pub fn weighted_median(values: impl Iterator<Item = (f64, f64)>) -> f64 {
+    weighted_quantile(values, 0.5)
+}
+
+/// The weighted median of `|values|` over the positive weights (weights need not be
+/// normalised); 0 when no weight is positive.
+pub fn weighted_median_abs(values: &[f64], weights: &[f64]) -> f64 {
+    let pairs = values.iter().zip(weights).filter(|(_, w)| **w > 0.0).map(|(v, w)| (v.abs(), *w));
+    let median = weighted_median(pairs);
+    if median.is_nan() { 0.0 } else { median }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quantile_by_selection_equals_the_sorted_quantile_bit_for_bit() {
+        // Ties, negative zeros, both parities of length, every interpolation position.
+        let mut state = 12345u64;
+        for length in 1..40 {
+            let values: Vec<f64> = (0..length)
+                .map(|_| {
+                    state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                    let v = (((state >> 33) % 17) as f64 - 8.0) * 0.37;
+                    if v == 0.0 && state & 1 == 1 { -0.0 } else { v }
+                })
+                .collect();
+            for fraction in [0.0, 0.05, 0.25, 0.5, 0.77, 0.95, 1.0] {
+                let mut sorted = values.clone();
+                sorted.sort_unstable_by(f64::total_cmp);
+                let position = fraction * (length - 1) as f64;
+                let (low, high) = (position.floor() as usize, position.ceil() as usize);
+                let expected = sorted[low] + (sorted[high] - sorted[low]) * (position - low as f64);
+                let found = quantile(&mut values.clone(), fraction);
+                assert_eq!(found.to_bits(), expected.to_bits(), "{values:?} at {fraction}");
+            }
+        }
+        assert!(quantile(&mut [], 0.5).is_nan());
+    }
+
+    #[test]
+    fn the_medians_pick_the_documented_ranks() {
+        assert_eq!(upper_median(&[3.0, 1.0, 2.0, 4.0]), 3.0);
+        assert_eq!(nearest_rank_quantile(&mut [5.0, 1.0, 3.0], 0.5), 3.0);
+        assert!(nearest_rank_quantile(&mut [], 0.5).is_nan());
+        assert_eq!(weighted_median([(1.0, 1.0), (2.0, 1.0), (10.0, 5.0)].into_iter()), 10.0);
+        assert_eq!(weighted_quantile([(1.0, 1.0), (2.0, 1.0), (10.0, 5.0)].into_iter(), 0.25), 2.0);
+        assert_eq!(weighted_median_abs(&[-4.0, 1.0, 2.0], &[1.0, 1.0, 0.0]), 1.0);
+        assert_eq!(weighted_median_abs(&[1.0], &[0.0]), 0.0);
+    }
+}
