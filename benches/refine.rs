@@ -1,5 +1,7 @@
-//! Pre-orientation + refinement of a ~10k-vertex synthetic rim sherd (the goal:
-//! under 200 ms), and each criterion alone from a start 3 degrees off.
+//! Pre-orientation + refinement of a ~10k-vertex synthetic rim sherd and of a body sherd
+//! (the goal: under 200 ms; the rim is levelled by the tangent plane, the body
+//! refined by the circles criterion), and each criterion alone from a start 3 degrees
+//! off.
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
 use nalgebra::{Unit, UnitQuaternion};
@@ -22,6 +24,14 @@ fn bench(c: &mut Bench) {
         b.iter(|| {
             let orientation = orient_automatic(&sherd.mesh, &OrientOptions::default()).unwrap();
             refine(&sherd.mesh, &orientation.axis, &RefineOptions::default()).unwrap()
+        })
+    });
+    let body = synthetic_sherd(3, &SherdOptions { target_faces: 20_000, ..SherdOptions::for_part(SherdPart::Body) });
+    eprintln!("bench body sherd: {} vertices, {} faces", body.mesh.vertex_count(), body.mesh.face_count());
+    group.bench_function("orient_automatic + refine(Auto), 10k-vertex body sherd", |b| {
+        b.iter(|| {
+            let orientation = orient_automatic(&body.mesh, &OrientOptions::default()).unwrap();
+            refine(&body.mesh, &orientation.axis, &RefineOptions::default()).unwrap()
         })
     });
     let start = tilted(&sherd.truth.axis);

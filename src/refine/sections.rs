@@ -21,6 +21,13 @@ use crate::{Error, Result};
 /// Skin triangles cut by one task of [`PreparedSurface::horizontal_sections`]: small
 /// meshes stay in one or two tasks.
 const TRIANGLES_PER_TASK: usize = 16_384;
+/// Fewest skin triangles for which an evaluation's steps run on the thread pool. Each
+/// parallel step hands its work to the pool and waits for it to come back; on a 20k-face
+/// body sherd (2 cores) those hand-overs took more than half of an evaluation (kernel
+/// scheduling under `perf`): cutting its sections took 452 us in parallel and 189 us on
+/// one thread, and the circles refinement 360 ms against 150. On 2 cores one thread was
+/// still 10-15% faster at 95k and 193k skin triangles, where more cores would win.
+const PARALLEL_MIN_SKIN_TRIANGLES: usize = 4 * TRIANGLES_PER_TASK;
 
 /// Which skin of the fragment a criterion uses (the paper's "surface choice").
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
@@ -496,43 +503,60 @@ impl PreparedSurface {
             // between two planes and are passed over on their corners' counts alone
             // (4 bytes each, where a moved point takes 24), the points read only for
             // the triangles that are cut. Vertices off the skins are never read.
-            let moved: Vec<Point> = self
-                .points
-                .par_iter()
-                .zip(self.skins.par_iter())
-                .map(|(p, s)| if s.is_some() { frame.apply(p) } else { Point::origin() })
-                .collect();
+            // Below [`PARALLEL_MIN_SKIN_TRIANGLES`] it all runs on the calling thread.
+            let parallel = self.skin_triangles.len() > PARALLEL_MIN_SKIN_TRIANGLES;
+            let move_vertex = |(p, s): (&Point, &Option<Skin>)| if s.is_some() { frame.apply(p) } else { Point::origin() };
+            let moved: Vec<Point> = if parallel {
+                self.points.par_iter().zip(self.skins.par_iter()).map(move_vertex).collect()
+            } else {
+                self.points.iter().zip(&self.skins).map(move_vertex).collect()
+            };
             let locate = PlaneLocator::new(heights);
-            let ranks: Vec<u32> = moved.par_iter().map(|q| locate.planes_at_or_below(q.z) as u32).collect();
-            let cuts: Vec<Vec<(usize, [f64; 2], f64)>> = self
-                .skin_triangles
-                .par_chunks(TRIANGLES_PER_TASK)
-                .map(|run| {
-                    // Room for a cut per four triangles spares most regrowths (they were
-                    // 5% of a 200k-face rim sherd's time under `perf record`).
-                    let mut cuts = Vec::with_capacity(run.len() / 4);
-                    for (triangle, skin) in run {
-                        let ranks = triangle.map(|v| ranks[v as usize]);
-                        let first_crossed = ranks[0].min(ranks[1]).min(ranks[2]) as usize;
-                        let past_crossed = ranks[0].max(ranks[1]).max(ranks[2]) as usize;
-                        if first_crossed == past_crossed {
-                            continue;
-                        }
-                        // Plane `index` is crossed when one corner lies below it (count <=
-                        // index) and one at or above it (count > index).
-                        let corners = triangle.map(|v| moved[v as usize]);
-                        for (index, &h) in heights.iter().enumerate().take(past_crossed).skip(first_crossed) {
-                            if let Some((a, b)) = cut_triangle(&corners, h) {
-                                let length = planar_length(a[0] - b[0], a[1] - b[1]);
-                                if length > 0.0 {
-                                    cuts.push((slot(*skin) + index, [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0], length));
-                                }
+            // Vertices off the skins are in no skin triangle: their rank is never read.
+            let rank = |(q, s): (&Point, &Option<Skin>)| if s.is_some() { locate.planes_at_or_below(q.z) as u32 } else { 0 };
+            let ranks: Vec<u32> = if parallel {
+                moved.par_iter().zip(self.skins.par_iter()).map(rank).collect()
+            } else {
+                moved.iter().zip(&self.skins).map(rank).collect()
+            };
+            let cut_run = |run: &[([u32; 3], Skin)]| {
+                // Room for a cut per four triangles spares most regrowths (they were
+                // 5% of a 200k-face rim sherd's time under `perf record`).
+                let mut cuts = Vec::with_capacity(run.len() / 4);
+                for (triangle, skin) in run {
+                    let ranks = triangle.map(|v| ranks[v as usize]);
+                    let first_crossed = ranks[0].min(ranks[1]).min(ranks[2]) as usize;
+                    let past_crossed = ranks[0].max(ranks[1]).max(ranks[2]) as usize;
+                    if first_crossed == past_crossed {
+                        continue;
+                    }
+                    // Plane `index` is crossed when one corner lies below it (count <=
+                    // index) and one at or above it (count > index).
+                    let corners = triangle.map(|v| moved[v as usize]);
+                    for (index, &h) in heights.iter().enumerate().take(past_crossed).skip(first_crossed) {
+                        if let Some((a, b)) = cut_triangle(&corners, h) {
+                            let length = planar_length(a[0] - b[0], a[1] - b[1]);
+                            if length > 0.0 {
+                                cuts.push((slot(*skin) + index, [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0], length));
                             }
                         }
                     }
-                    cuts
-                })
-                .collect();
+                }
+                cuts
+            };
+            let cuts: Vec<Vec<(usize, [f64; 2], f64)>> = if parallel {
+                self.skin_triangles.par_chunks(TRIANGLES_PER_TASK).map(cut_run).collect()
+            } else {
+                vec![cut_run(&self.skin_triangles)]
+            };
+            let mut cut_counts = vec![0usize; sections.len()];
+            for (section_index, _, _) in cuts.iter().flatten() {
+                cut_counts[*section_index] += 1;
+            }
+            for (section, &count) in sections.iter_mut().zip(&cut_counts) {
+                section.points.reserve_exact(count);
+                section.weights.reserve_exact(count);
+            }
             for (section_index, point, length) in cuts.into_iter().flatten() {
                 let section = &mut sections[section_index];
                 section.points.push(point);

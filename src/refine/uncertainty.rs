@@ -273,12 +273,24 @@ mod tests {
     #[test]
     fn newton_places_a_resample_where_the_search_does() {
         let (mut compared, mut declined) = (0, 0);
-        for seed in 0..12 {
+        // Most resamples are refused a placement (the skins do not fix it): 12 rims gave
+        // 8 comparisons with the refinement's search stopped at 1e-14 mm^2, 7 with it
+        // stopped at the criteria's jitter; 16 give 12 (and 2 declined).
+        for seed in 0..16 {
             let sherd = synthetic_sherd(seed, &SherdOptions { target_faces: 8000, ..SherdOptions::for_part(SherdPart::Rim) });
             let refined = refine(&sherd.mesh, &sherd.truth.axis, &RefineOptions { criterion: Criterion::Tangent, ..Default::default() }).unwrap();
             let surface = PreparedSurface::new(&sherd.mesh, &refined.axis, Surface::Both, None).unwrap();
             let section_count = surface.horizontal_sections(&super::super::sections::CandidateFrame::new(&[0.0; 4])).len();
-            let settings = SearchSettings { free: FreeParameters::ShiftsOnly, max_iterations: 400, max_restarts: 2, ..Default::default() };
+            // The search as the reference: run to the floating-point floor, not stopped
+            // at the criteria's jitter as refinements are.
+            let settings = SearchSettings {
+                free: FreeParameters::ShiftsOnly,
+                max_iterations: 400,
+                max_restarts: 2,
+                relative_cost_tolerance: 1e-12,
+                min_restart_improvement: 1e-9,
+                ..Default::default()
+            };
             let mut rng = ChaCha8Rng::seed_from_u64(seed);
             for _ in 0..4 {
                 let weights = resample_weights(section_count, &mut rng);
@@ -289,7 +301,10 @@ mod tests {
                 if crate::refine::radial_curvature(&circles, &searched) < crate::refine::MIN_PLACING_CURVATURE {
                     continue; // the placement is refused whoever finds it
                 }
-                let Some(placed) = newton_placement(&circles, tilted) else {
+                // As the bootstrap uses it: a placement the skins do not fix is refused.
+                let placed = newton_placement(&circles, tilted)
+                    .filter(|placed| crate::refine::radial_curvature(&circles, placed) >= crate::refine::MIN_PLACING_CURVATURE);
+                let Some(placed) = placed else {
                     declined += 1;
                     continue;
                 };
