@@ -12,6 +12,7 @@
 
 use std::time::Instant;
 
+use sherd::statistics::nearest_rank_quantile;
 use sherd::orient::mean_point_distance_mm;
 use sherd::pipeline::{analyse, PipelineOptions};
 use sherd::refine::RefineOptions;
@@ -30,12 +31,9 @@ struct Outcome {
     total_s: f64,
 }
 
+/// The upper median (rank `n / 2`, as `round((n - 1) / 2)` gives it), NaN for none.
 fn median(mut values: Vec<f64>) -> f64 {
-    if values.is_empty() {
-        return f64::NAN;
-    }
-    values.sort_by(f64::total_cmp);
-    values[values.len() / 2]
+    nearest_rank_quantile(&mut values, 0.5)
 }
 
 fn maximum(values: &[f64]) -> f64 {

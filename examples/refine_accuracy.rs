@@ -23,6 +23,7 @@ use nalgebra::{Unit, UnitQuaternion};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
+use sherd::statistics::nearest_rank_quantile;
 use sherd::mesh::Vector;
 use sherd::orient::{mean_point_distance_mm, orient_automatic, Axis, OrientOptions};
 use sherd::profile::measure::{measure, MeasureOptions, Measurements};
@@ -164,20 +165,13 @@ fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
     }
 }
 
+/// The upper median (rank `n / 2`, as `round((n - 1) / 2)` gives it), NaN for none.
 fn median(mut values: Vec<f64>) -> f64 {
-    if values.is_empty() {
-        return f64::NAN;
-    }
-    values.sort_by(f64::total_cmp);
-    values[values.len() / 2]
+    nearest_rank_quantile(&mut values, 0.5)
 }
 
 fn percentile(mut values: Vec<f64>, fraction: f64) -> f64 {
-    if values.is_empty() {
-        return f64::NAN;
-    }
-    values.sort_by(f64::total_cmp);
-    values[((values.len() - 1) as f64 * fraction).round() as usize]
+    nearest_rank_quantile(&mut values, fraction)
 }
 
 fn percent(count: usize, total: usize) -> f64 {
