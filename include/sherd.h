@@ -1448,7 +1448,10 @@ SherdStatus sherd_draw_options_set_title(SherdDrawOptions *options, const char *
  *
  * Returns `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` (record written, no axis) when the
  * sherd does not determine its axis; `SHERD_STATUS_SENSE_UNCERTAIN` (record and axis
- * written, refined and measured) when it determines the axis line but not which way is up. When the scan cannot be read or processed the
+ * written, refined and measured) when it determines the axis line but not which way is up;
+ * `SHERD_STATUS_OK` with the record's `"status"` `"axis_uncertain"` (and its `"reason"`)
+ * when the axis is found but not pinned down: check it before using its figures. When
+ * the scan cannot be read or processed the
  * record (status `"error"`) is still written, no axis, and the status says why:
  * `SHERD_STATUS_IO`, `SHERD_STATUS_PARSE`, `SHERD_STATUS_NOT_CONVERGED`...
  *

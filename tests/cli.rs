@@ -76,7 +76,9 @@ fn a011_is_oriented_from_three_points_on_its_longest_rill_with_its_rills_horizon
         format!("{x},{y},{z}")
     }).collect();
     let json = orient_json(&path, &["--manual", &picks.join(";")]);
-    assert_eq!(json["status"], "ok", "{json:#}");
+    // The rill fixes the direction; the skins fix the position only loosely on this short
+    // arc, which the record says (axis_uncertain, with the reason) rather than hide.
+    assert!(json["status"] == "ok" || json["status"] == "axis_uncertain", "{json:#}");
     let rills = &json["rills"];
     assert!(rills["count"].as_u64().unwrap() >= 3, "{json:#}");
     let slope = rills["slope_deg"].as_f64().unwrap();
@@ -116,7 +118,7 @@ fn orient_json_on_the_real_scan_a011_keeps_the_contract() {
     }
     let status = json["status"].as_str().unwrap();
     match status {
-        "ok" | "sense_uncertain" => {
+        "ok" | "axis_uncertain" | "sense_uncertain" => {
             let direction = vector(&json["axis"]["direction"]);
             assert!((direction.iter().map(|c| c * c).sum::<f64>() - 1.0).abs() < 1e-6, "{json:#}");
         }
@@ -318,8 +320,9 @@ fn batch_reports_every_sherd_keeps_going_past_a_broken_file_exits_1_and_resumes(
     assert!(broken[1].contains("zz-broken.ply"), "the reason names the file: {broken:?}");
     for scan in &scans {
         let row = rows.iter().find(|r| Path::new(&r[0]) == scan).expect("every scan has a row");
-        assert!(row[1] == "ok" || row[1] == "sense_uncertain" || row[1] == "needs_manual_orientation", "{row:?}");
-        if row[1] == "ok" {
+        assert!(["ok", "axis_uncertain", "sense_uncertain", "needs_manual_orientation"].contains(&row[1].as_str()), "{row:?}");
+        // An uncertain axis is drawn too: the best guess, its status saying to check it.
+        if row[1] == "ok" || row[1] == "axis_uncertain" {
             let stem = scan.file_stem().unwrap().to_string_lossy();
             assert!(output.join(format!("{stem}.svg")).exists(), "drawing of {stem}");
         }

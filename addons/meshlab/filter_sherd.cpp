@@ -151,6 +151,11 @@ SherdAxis layerAxis(const LayerMesh& layer, int source)
 	// drawing or the layer's frame may be upside down.
 	if (analysis.status == SHERD_STATUS_SENSE_UNCERTAIN)
 		qWarning("Sherd: the sense of the axis (base to rim) is uncertain: %s", analysis.reason.c_str());
+	// Found but not pinned down: the axis is used (the best guess), and said to be one.
+	QJsonObject record = QJsonDocument::fromJson(QByteArray::fromStdString(analysis.record_json)).object();
+	if (record.value("status").toString() == "axis_uncertain")
+		qWarning("Sherd: the axis is not pinned down (%s): check it before using the figures.",
+		         qUtf8Printable(record.value("reason").toString()));
 	return analysis.axis;
 }
 

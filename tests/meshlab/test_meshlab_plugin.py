@@ -265,7 +265,7 @@ def real_scan():
 def test_real_scan(real_scan):
     ms = load(real_scan)
     record, error = cli_record(real_scan)
-    if record is not None and record["status"] == "ok":
+    if record is not None and record["status"] in ("ok", "axis_uncertain"):
         ms.apply_filter("sherd_orient")
         np.testing.assert_allclose(ms.current_mesh().trasform_matrix(), cli_transform(real_scan, record), atol=1e-9)
     else:

@@ -213,13 +213,19 @@ class Analysis:
     and units (None when the axis line is not found; ``reason`` then says why). ``oriented``
     is False also when only the sense is uncertain: ``sense_uncertain`` is then True (record
     status ``sense_uncertain``) and the axis is given, its line found, its sense (base to
-    rim) a guess."""
+    rim) a guess. ``axis_uncertain`` is True (record status ``axis_uncertain``, its
+    ``reason`` saying why) when the axis is found but not pinned down: ``oriented`` stays
+    True, and the axis wants a look before its figures are used."""
 
     axis: Axis
     oriented: bool
     reason: str
     record: dict
     sense_uncertain: bool = False
+
+    @property
+    def axis_uncertain(self):
+        return self.record.get("status") == "axis_uncertain"
 
 
 def _analysis(call, refine_options, millimetres_per_unit):
@@ -232,8 +238,9 @@ def _analysis(call, refine_options, millimetres_per_unit):
         raise error_for(status)
     oriented = status == Status.OK
     has_line = status in (Status.OK, Status.SENSE_UNCERTAIN)
-    return Analysis(Axis.from_c(axis) if has_line else None, oriented,
-                    "" if oriented else last_error_message(), take_json(record),
+    record = take_json(record)
+    reason = (record.get("reason") or "") if oriented else last_error_message()
+    return Analysis(Axis.from_c(axis) if has_line else None, oriented, reason, record,
                     status == Status.SENSE_UNCERTAIN)
 
 

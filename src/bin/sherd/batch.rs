@@ -104,13 +104,14 @@ pub fn run(args: BatchArgs) -> Result<ExitCode, String> {
     write_reports(&args.output, &records)?;
     let failures: Vec<&SherdRecord> = records.iter().filter(|r| is_error_row(r)).collect();
     eprintln!(
-        "{} sherds in {:.1} s ({} done before, skipped); {} ok, {} sense uncertain (not drawn), {} need manual orientation, {} errors; reports in {}",
+        "{} sherds in {:.1} s ({} done before, skipped); {} ok, {} axis uncertain (drawn: check them), {} sense uncertain (not drawn), {} need manual orientation, {} errors; reports in {}",
         records.len(),
         started.elapsed().as_secs_f64(),
         skipped,
-        records.iter().filter(|r| r.status == "ok").count(),
+        records.iter().filter(|r| r.status == pipeline::STATUS_OK).count(),
+        records.iter().filter(|r| r.status == pipeline::STATUS_AXIS_UNCERTAIN).count(),
         records.iter().filter(|r| r.status == pipeline::STATUS_SENSE_UNCERTAIN).count(),
-        records.iter().filter(|r| r.status == "needs_manual_orientation").count(),
+        records.iter().filter(|r| r.status == pipeline::STATUS_NEEDS_MANUAL).count(),
         failures.len(),
         args.output.display()
     );

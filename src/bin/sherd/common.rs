@@ -290,6 +290,13 @@ pub fn analyse_or_read_axis(scan: &Path, axis_file: Option<&Path>, analysis: &An
                 sherd::orient::Verdict::Oriented => {}
             }
             let record = sherd::pipeline::SherdRecord::from_analysis(scan.display().to_string(), &result);
+            if record.status == sherd::pipeline::STATUS_AXIS_UNCERTAIN {
+                eprintln!(
+                    "warning: {}: the axis is not pinned down ({}); check it before using the figures, or give an axis with --axis",
+                    scan.display(),
+                    record.reason.as_deref().unwrap_or_default()
+                );
+            }
             let axis = *result.axis();
             Ok(Oriented { mesh: result.mesh, axis, record: Some(record), measurements: result.measurements, millimetres_per_unit })
         }
