@@ -555,6 +555,13 @@ typedef struct {
    * Interval of the axis direction's error, degrees.
    */
   double axis_angle_interval_deg[2];
+  /**
+   * 1 when that interval reaches past 4 degrees: the axis is uncertain, and it and these
+   * figures want a look before they are used (the JSON's notes say how far); 0
+   * otherwise. A caller whose `size` ends before this field (an older header) is not
+   * written to here.
+   */
+  uint32_t axis_uncertain;
 } SherdMeasurements;
 
 /**
@@ -631,6 +638,13 @@ typedef struct {
    * Points on the Pareto front (0 unless the criterion is Pareto).
    */
   size_t pareto_point_count;
+  /**
+   * 1 when the refinement doubts its own axis: the skins barely fix its position
+   * (`flag_reason` in `sherd_refinement_report_json` says how little); 0 otherwise.
+   * Such an axis is the best guess, to check before its figures are used. A caller whose
+   * `size` ends before this field (an older header) is not written to here.
+   */
+  uint32_t flagged;
 } SherdRefineReport;
 
 /**

@@ -45,6 +45,11 @@ pub struct SherdMeasurements {
     pub capacity_litres: f64,
     /// Interval of the axis direction's error, degrees.
     pub axis_angle_interval_deg: [f64; 2],
+    /// 1 when that interval reaches past 4 degrees: the axis is uncertain, and it and these
+    /// figures want a look before they are used (the JSON's notes say how far); 0
+    /// otherwise. A caller whose `size` ends before this field (an older header) is not
+    /// written to here.
+    pub axis_uncertain: u32,
 }
 
 impl Default for SherdMeasurements {
@@ -63,13 +68,15 @@ impl Default for SherdMeasurements {
             wall_thickness_mm: f64::NAN,
             capacity_litres: f64::NAN,
             axis_angle_interval_deg: [f64::NAN; 2],
+            axis_uncertain: 0,
         }
     }
 }
 
 unsafe impl SizedStruct for SherdMeasurements {
     const NAME: &'static str = "SherdMeasurements";
-    const MIN_SIZE: usize = size_of::<SherdMeasurements>();
+    /// The first version ended before `axis_uncertain`.
+    const MIN_SIZE: usize = std::mem::offset_of!(SherdMeasurements, axis_uncertain);
 }
 
 impl SherdMeasurements {
@@ -90,6 +97,7 @@ impl SherdMeasurements {
             wall_thickness_mm: or_nan(m.wall_thickness_mm),
             capacity_litres: or_nan(m.capacity_litres),
             axis_angle_interval_deg: interval(m.axis_angle_interval_deg),
+            axis_uncertain: u32::from(m.axis_uncertain),
         }
     }
 }

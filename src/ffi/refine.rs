@@ -115,11 +115,17 @@ pub struct SherdRefineReport {
     pub section_count: usize,
     /// Points on the Pareto front (0 unless the criterion is Pareto).
     pub pareto_point_count: usize,
+    /// 1 when the refinement doubts its own axis: the skins barely fix its position
+    /// (`flag_reason` in `sherd_refinement_report_json` says how little); 0 otherwise.
+    /// Such an axis is the best guess, to check before its figures are used. A caller whose
+    /// `size` ends before this field (an older header) is not written to here.
+    pub flagged: u32,
 }
 
 unsafe impl SizedStruct for SherdRefineReport {
     const NAME: &'static str = "SherdRefineReport";
-    const MIN_SIZE: usize = size_of::<SherdRefineReport>();
+    /// The first version ended before `flagged`.
+    const MIN_SIZE: usize = std::mem::offset_of!(SherdRefineReport, flagged);
 }
 
 /// One non-dominated solution of the Pareto criterion (Eq. 3-4): the tilts of the axis
@@ -201,6 +207,7 @@ pub unsafe extern "C" fn sherd_refinement_report(refinement: *const SherdRefinem
             shift_mm: report.shift_mm,
             section_count: report.section_count,
             pareto_point_count: refinement.pareto_front.as_ref().map_or(0, Vec::len),
+            flagged: u32::from(report.flagged),
         };
         unsafe { write_sized(out_report, summary, "out_report") }
     })

@@ -4,6 +4,8 @@
  * export (oriented PLY, reconstruction PLY, profile CSV), draw in each format (memory and file).
  * Asserts real properties: the axis within a few degrees of the truth, the formats'
  * signatures, the exported files readable again. */
+#include <stddef.h>
+
 #include "pipeline.h"
 
 /* A seed where the orientation layer orients the rim piece (it refuses or misorients
@@ -58,6 +60,7 @@ static void measure_and_export(const SherdMesh *mesh, const SherdAxis *axis, con
     CHECK(fabs(measurements.rim_diameter_interval_mm[0] / measurements.rim_diameter_mm - 1.0) < 0.05);
     CHECK(fabs(measurements.rim_diameter_interval_mm[1] / measurements.rim_diameter_mm - 1.0) < 0.05);
     CHECK(measurements.sector_angle_deg > 0.0 && measurements.sector_angle_deg < 360.0);
+    CHECK(measurements.axis_uncertain == (measurements.axis_angle_interval_deg[1] > 4.0));
     CHECK_NEAR(measurements.sector_percent, measurements.sector_angle_deg / 3.6, 1e-9);
     CHECK(measurements.height_mm > 0.0);
     CHECK(isnan(measurements.capacity_litres)); /* a rim piece: no complete profile */
@@ -174,6 +177,16 @@ static void orient_and_refine(SherdMesh *mesh, const SherdAxis *truth, const cha
         CHECK_OK(sherd_refinement_axis(refinement, &refined));
         CHECK_OK(sherd_refinement_report(refinement, &summary));
         CHECK(summary.residual_mm >= 0.0 && summary.section_count > 0);
+        CHECK(summary.flagged == 0 || summary.flagged == 1);
+        {
+            /* A caller built against the first header (its struct ends before `flagged`)
+             * is answered, and nothing is written past its struct. */
+            SherdRefineReport old;
+            memset(&old, 0xA5, sizeof old);
+            old.size = offsetof(SherdRefineReport, flagged);
+            CHECK_OK(sherd_refinement_report(refinement, &old));
+            CHECK(old.residual_mm == summary.residual_mm && old.flagged == 0xA5A5A5A5u);
+        }
         CHECK(criterion == SHERD_CRITERION_AUTO || summary.criterion == criterion);
         /* Asking with no room gives the count (and BUFFER_TOO_SMALL when there are points). */
         CHECK_STATUS(sherd_refinement_pareto_front(refinement, NULL, 0, &count),

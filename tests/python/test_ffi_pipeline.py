@@ -98,6 +98,7 @@ def test_refine_with_each_criterion(oriented_rim, criterion):
     assert refinement.surface == "both"
     assert refinement.residual_mm >= 0 and refinement.section_count > 0
     assert refinement.report["residual_mm"] == pytest.approx(refinement.residual_mm)
+    assert refinement.flagged == refinement.report["flagged"]
     if criterion == "pareto":
         front = refinement.pareto_front
         assert front.shape[1] == 4 and len(front) >= 2
@@ -129,6 +130,7 @@ def test_measurements_with_intervals(rim_sherd, oriented_rim):
     assert measured.sector_percent == pytest.approx(measured.sector_angle_deg / 3.6)
     assert np.isnan(measured.capacity_litres)
     assert measured.details["rim_diameter_mm"] == pytest.approx(measured.rim_diameter_mm)
+    assert measured.axis_uncertain == measured.details["axis_uncertain"] == (measured.axis_angle_interval_deg[1] > 4.0)
     again = sherd.measure(mesh, axis, bootstrap_samples=8, bootstrap_seed=3, refine_options={"criterion": "auto"})
     assert again.rim_diameter_interval_mm == measured.rim_diameter_interval_mm
     no_intervals = sherd.measure(mesh, axis, bootstrap_samples=0)

@@ -245,7 +245,7 @@ class SHERD_OT_refine(SherdOperator, bpy.types.Operator):
         # Each point: tilt about x and y (deg), centre dispersion and circle residual (mm^2).
         obj["sherd_pareto_front"] = refinement.pareto_front.tolist()
         summary = f"refined: tilt {refinement.tilt_deg:.2f} deg, residual {refinement.residual_mm:.3f} mm"
-        if refinement.report.get("flagged"):
+        if refinement.flagged:
             # Kept and stored (it is the best guess), but not presented as a sure axis.
             self.notify({'WARNING'}, f"{summary}; the axis is uncertain: {refinement.report.get('flag_reason')}")
         else:
@@ -279,7 +279,7 @@ class SHERD_OT_measure(SherdOperator, bpy.types.Operator):
                 obj[key] = value
             elif key in obj:
                 del obj[key]
-        if measurements.details.get("axis_uncertain"):
+        if measurements.axis_uncertain:
             notes = [n for n in measurements.details.get("notes", []) if n.startswith("the axis is uncertain")]
             self.notify({'WARNING'}, "measured; " + (notes[0] if notes else "the axis is uncertain") +
                         ": check the axis before using these figures")

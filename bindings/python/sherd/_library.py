@@ -181,6 +181,7 @@ class SherdRefineReport(ctypes.Structure):
         ("shift_mm", ctypes.c_double),
         ("section_count", ctypes.c_size_t),
         ("pareto_point_count", ctypes.c_size_t),
+        ("flagged", ctypes.c_uint32),
     ]
 
 
@@ -208,6 +209,7 @@ class SherdMeasurements(ctypes.Structure):
         ("wall_thickness_mm", ctypes.c_double),
         ("capacity_litres", ctypes.c_double),
         ("axis_angle_interval_deg", ctypes.c_double * 2),
+        ("axis_uncertain", ctypes.c_uint32),
     ]
 
 

@@ -121,6 +121,9 @@ class Refinement:
     section_count: int
     pareto_front: np.ndarray
     report: dict
+    flagged: bool = False
+    """The refinement doubts its axis (the skins barely fix its position):
+    ``report["flag_reason"]`` says how little; the axis is the best guess, to check."""
 
 
 def _refine_options(criterion="auto", surface="both", section_count=0, search_bound_deg=None):
@@ -156,7 +159,7 @@ def refine(mesh, axis, *, criterion="auto", surface="both", section_count=0, sea
         return Refinement(Axis.from_c(refined), _CRITERION_NAMES.get(summary.criterion, str(summary.criterion)),
                           _SURFACE_NAMES.get(summary.surface, str(summary.surface)), summary.iterations,
                           summary.start_residual_mm, summary.residual_mm, summary.tilt_deg, summary.shift_mm,
-                          summary.section_count, front, take_json(report))
+                          summary.section_count, front, take_json(report), bool(summary.flagged))
     finally:
         c.lib.sherd_refinement_free(handle)
 
@@ -180,6 +183,9 @@ class Measurements:
     capacity_litres: float
     axis_angle_interval_deg: tuple
     details: dict
+    axis_uncertain: bool = False
+    """The axis angle interval reaches past 4 degrees: the axis and these figures want a
+    look before they are used (``details["notes"]`` says how far)."""
 
 
 def measure(mesh, axis, *, bootstrap_samples=None, bootstrap_seed=None, confidence=None, refine_options=None):
@@ -203,7 +209,8 @@ def measure(mesh, axis, *, bootstrap_samples=None, bootstrap_seed=None, confiden
     return Measurements(out.rim_radius_mm, out.rim_diameter_mm, tuple(out.rim_diameter_interval_mm),
                         out.base_radius_mm, out.base_diameter_mm, tuple(out.base_diameter_interval_mm),
                         out.sector_angle_deg, out.sector_percent, out.height_mm, out.wall_thickness_mm,
-                        out.capacity_litres, tuple(out.axis_angle_interval_deg), take_json(details))
+                        out.capacity_litres, tuple(out.axis_angle_interval_deg), take_json(details),
+                        bool(out.axis_uncertain))
 
 
 @dataclass
