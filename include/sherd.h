@@ -1140,6 +1140,25 @@ SherdStatus sherd_orient_from_three_points(const SherdMesh *mesh,
                                            SherdBuffer **out_report_json);
 
 /**
+ * Three points on the longest wheel rill traced under `axis`, for
+ * `sherd_orient_from_three_points`: where to pick on a sherd `sherd_orient_automatic`
+ * declines, under the axis it still wrote (the command-line tool's
+ * `manual_points_on_rill`, without orienting the sherd a second time). `out_points` (room
+ * for 9 doubles: `x y z` of each point, in the mesh's frame and units) is written and
+ * `*out_point_count` set to 3 when a rill is traced; on a smooth wall nothing is written
+ * and it is set to 0. Wheel rills are found by their depth in millimetres: `mesh` is in
+ * millimetres.
+ *
+ * # Safety
+ * `mesh` must be a live handle; `axis` must have its `size` set; `out_points` writable
+ * for 9 doubles; `out_point_count` writable.
+ */
+SherdStatus sherd_points_on_longest_rill(const SherdMesh *mesh,
+                                         const SherdAxis *axis,
+                                         double *out_points,
+                                         size_t *out_point_count);
+
+/**
  * Creates repair options with the library's defaults.
  *
  * # Safety

@@ -14,7 +14,7 @@ use crate::mesh::repair::{repair, RepairOptions, RepairReport};
 use crate::mesh::{Mesh, Point};
 use crate::orient::{decimated_copy, orient_automatic_with_decimated, orient_from_three_points, Axis, AxisRecord, ManualOptions, OrientOptions, Orientation, Verdict};
 use crate::profile::measure::{measure_with_bootstrap_mesh, MeasureOptions, Measurements, MAX_UNFLAGGED_AXIS_INTERVAL_DEG};
-use crate::profile::rills::{rill_check, three_points_on, trace_rills, Rill, RillCheck, RillOptions};
+use crate::profile::rills::{rill_check, three_points_on, trace_rills_under, Rill, RillCheck, RillOptions};
 use crate::refine::{chosen_criterion, refine, refine_placing_on, Criterion, RefineOptions, Refinement};
 use crate::{Error, Result};
 
@@ -202,9 +202,7 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
     let mut declined_axis_rills = Vec::new();
     if measurements.is_none() && found_an_axis {
         let clock = Instant::now();
-        declined_axis_rills = crate::orient::segment_surfaces(&mesh, &orientation.axis)
-            .map(|skins| trace_rills(&mesh, &orientation.axis, &skins, &RillOptions::default()))
-            .unwrap_or_default();
+        declined_axis_rills = trace_rills_under(&mesh, &orientation.axis, &RillOptions::default());
         timings.measure_s += clock.elapsed().as_secs_f64();
     }
     Ok(Analysis {

@@ -1,7 +1,9 @@
 #include "filter_sherd.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include <QFileInfo>
 #include <QJsonArray>
@@ -119,23 +121,32 @@ MLException cannotOrient(const QString& reason, const QString& rills = QString()
 }
 
 // The three points the library suggests on the longest wheel rill of a fragment it cannot
-// orient (`record_json`: the pipeline's record, its manual_points_on_rill), as the three
-// points method's parameters in the layer's own coordinates; empty when it traced no rill.
-QString rillPoints(const LayerMesh& layer, const std::string& record_json)
+// orient (in the layer mesh's frame), as the three points method's parameters in the
+// layer's own coordinates; empty when it traced no rill.
+QString rillPoints(const LayerMesh& layer, const std::optional<std::array<double, 9>>& points)
 {
-	QJsonArray points = QJsonDocument::fromJson(QByteArray::fromStdString(record_json))
-	                        .object().value("manual_points_on_rill").toArray();
-	if (points.size() != 3) return QString();
+	if (!points) return QString();
 	Matrix44m back = vcg::Inverse(layer.transform);
 	QStringList named;
 	for (int i = 0; i < 3; ++i) {
-		QJsonArray p = points[i].toArray();
-		vcg::Point3d local = transformPoint(back, Point3m(Scalarm(p[0].toDouble()), Scalarm(p[1].toDouble()),
-		                                                  Scalarm(p[2].toDouble())));
+		const double* p = points->data() + 3 * i;
+		vcg::Point3d local = transformPoint(back, Point3m(Scalarm(p[0]), Scalarm(p[1]), Scalarm(p[2])));
 		named << QString("point_%1 = (%2, %3, %4)").arg(i + 1).arg(local[0], 0, 'f', 3).arg(local[1], 0, 'f', 3)
 		             .arg(local[2], 0, 'f', 3);
 	}
 	return ", for instance these on its longest wheel rill: " + named.join(", ");
+}
+
+// The pipeline record's manual_points_on_rill (`record_json`), if it gives them.
+std::optional<std::array<double, 9>> recordRillPoints(const std::string& record_json)
+{
+	QJsonArray points = QJsonDocument::fromJson(QByteArray::fromStdString(record_json))
+	                        .object().value("manual_points_on_rill").toArray();
+	if (points.size() != 3) return std::nullopt;
+	std::array<double, 9> values{};
+	for (int i = 0; i < 3; ++i)
+		for (int k = 0; k < 3; ++k) values[3 * i + k] = points[i].toArray()[k].toDouble();
+	return values;
 }
 
 // The axis of the analysis filters, in the frame the layer is displayed in.
@@ -146,7 +157,7 @@ SherdAxis layerAxis(const LayerMesh& layer, int source)
 		throw MLException(QString("Sherd: axis source %1 is not one of 0 (automatic), 1 (layer frame).").arg(source));
 	sherd::Analysis analysis = sherd::analyse(layer.mesh);
 	if (analysis.status == SHERD_STATUS_NEEDS_MANUAL_ORIENTATION)
-		throw cannotOrient(QString::fromStdString(analysis.reason), rillPoints(layer, analysis.record_json));
+		throw cannotOrient(QString::fromStdString(analysis.reason), rillPoints(layer, recordRillPoints(analysis.record_json)));
 	// The axis line is good, only which way is up is a guess: the measurements hold, a
 	// drawing or the layer's frame may be upside down.
 	if (analysis.status == SHERD_STATUS_SENSE_UNCERTAIN)
@@ -248,7 +259,7 @@ std::map<std::string, QVariant> orient(MeshModel& model, const RichParameterList
 			: sherd::orient_from_three_points(layer.mesh, pickedPoints(parameters, model.cm.Tr));
 		if (!found.oriented)
 			throw cannotOrient(QString::fromStdString(found.reason),
-			                   method == ORIENT_AUTOMATIC ? rillPoints(layer, sherd::analyse(layer.mesh).record_json)
+			                   method == ORIENT_AUTOMATIC ? rillPoints(layer, sherd::points_on_longest_rill(layer.mesh, found.axis))
 			                                              : QString());
 		axis = found.axis;
 		how = method == ORIENT_AUTOMATIC ? "automatic orientation" : "three points";

@@ -354,6 +354,17 @@ inline Orientation orient_from_three_points(const Mesh& mesh, const std::array<d
     return detail::finish_orientation(status, axis, report, json);
 }
 
+/// Three points (x y z each) on the longest wheel rill traced under `axis`: where to pick
+/// for orient_from_three_points on a sherd orient_automatic declines, under the axis it
+/// still gives. Empty on a smooth wall.
+inline std::optional<std::array<double, 9>> points_on_longest_rill(const Mesh& mesh, const SherdAxis& axis) {
+    std::array<double, 9> points{};
+    std::size_t count = 0;
+    check(sherd_points_on_longest_rill(mesh.get(), &axis, points.data(), &count));
+    if (count != 3) return std::nullopt;
+    return points;
+}
+
 /// A refinement: the refined axis, its summary, the Pareto front and the report as JSON.
 struct Refinement {
     SherdAxis axis;

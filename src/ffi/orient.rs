@@ -6,10 +6,11 @@ use super::error::{Failure, FfiResult};
 use super::mesh::{SherdMesh, mesh_ref};
 use super::options::{SherdManualOptions, SherdOrientOptions, options_or_default};
 use super::panic::guard;
-use super::pointers::{SizedStruct, checked_size, host_slice, host_slice_mut, read_sized, write_sized};
+use super::pointers::{SizedStruct, checked_size, host_slice, host_slice_mut, read_sized, require, write_out, write_sized};
 use super::status::SherdStatus;
 use crate::mesh::Point;
 use crate::orient::{Axis, AxisRecord, Orientation, Verdict};
+use crate::profile::rills::{three_points_on, trace_rills_under, RillOptions};
 use crate::profile::section::oriented_frame;
 
 /// A vessel's rotation axis in the scan's frame and units: a point on it and a unit
@@ -241,5 +242,43 @@ pub unsafe extern "C" fn sherd_orient_from_three_points(
         check_orientation_outputs(out_axis, out_report)?;
         let orientation = crate::orient::orient_from_three_points(mesh, picked, &options)?;
         unsafe { hand_out_orientation(&orientation, out_axis, out_report, out_report_json) }
+    })
+}
+
+/// Three points on the longest wheel rill traced under `axis`, for
+/// `sherd_orient_from_three_points`: where to pick on a sherd `sherd_orient_automatic`
+/// declines, under the axis it still wrote (the command-line tool's
+/// `manual_points_on_rill`, without orienting the sherd a second time). `out_points` (room
+/// for 9 doubles: `x y z` of each point, in the mesh's frame and units) is written and
+/// `*out_point_count` set to 3 when a rill is traced; on a smooth wall nothing is written
+/// and it is set to 0. Wheel rills are found by their depth in millimetres: `mesh` is in
+/// millimetres.
+///
+/// # Safety
+/// `mesh` must be a live handle; `axis` must have its `size` set; `out_points` writable
+/// for 9 doubles; `out_point_count` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_points_on_longest_rill(
+    mesh: *const SherdMesh,
+    axis: *const SherdAxis,
+    out_points: *mut f64,
+    out_point_count: *mut usize,
+) -> SherdStatus {
+    guard("sherd_points_on_longest_rill", || {
+        let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
+        let axis = unsafe { read_axis(axis, "axis") }?;
+        let out = unsafe { host_slice_mut(out_points, 3, 3, "out_points") }?;
+        require(out_point_count.cast_const(), "out_point_count")?;
+        let rills = trace_rills_under(mesh, &axis, &RillOptions::default());
+        let count = match rills.first() {
+            Some(longest) => {
+                for (chunk, point) in out.chunks_exact_mut(3).zip(three_points_on(longest)) {
+                    chunk.copy_from_slice(&[point.x, point.y, point.z]);
+                }
+                3
+            }
+            None => 0,
+        };
+        unsafe { write_out(out_point_count, count, "out_point_count") }
     })
 }

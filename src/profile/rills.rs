@@ -119,6 +119,13 @@ pub fn three_points_on(rill: &Rill) -> [Point; 3] {
     [point(0), point(rill.points.len() / 2), point(rill.points.len() - 1)]
 }
 
+/// The rills under `axis` on the skins [`crate::orient::segment_surfaces`] finds about it,
+/// longest first; empty where it finds none. Under the axis of a sherd the orientation
+/// declines, they are where to pick three points ([`three_points_on`] the longest).
+pub fn trace_rills_under(mesh: &Mesh, axis: &Axis, options: &RillOptions) -> Vec<Rill> {
+    crate::orient::segment_surfaces(mesh, axis).map(|skins| trace_rills(mesh, axis, &skins, options)).unwrap_or_default()
+}
+
 /// The rills of both skins under `axis` (`skins` from [`crate::orient::segment_surfaces`]),
 /// longest first. Empty on a smooth wall: the depth test keeps scan noise out.
 pub fn trace_rills(mesh: &Mesh, axis: &Axis, skins: &[Skin], options: &RillOptions) -> Vec<Rill> {

@@ -212,6 +212,8 @@ static void test_pipeline_misuse(void) {
     SherdBuffer *buffer = NULL;
     const double points[9] = {1, 0, 0, 0, 1, 0, -1, 0, 0};
     double nan_points[9] = {1, 0, 0, 0, 1, 0, -1, 0, 0};
+    double rill_points[9];
+    size_t count = 0;
 
     memset(&report, 0, sizeof report);
     report.size = sizeof report;
@@ -268,6 +270,14 @@ static void test_pipeline_misuse(void) {
     NULL_ARGUMENT(sherd_orient_from_three_points(NULL, points, NULL, &axis, NULL, NULL), "mesh");
     NULL_ARGUMENT(sherd_orient_from_three_points(mesh, NULL, NULL, &axis, NULL, NULL), "points");
     NULL_ARGUMENT(sherd_orient_from_three_points(mesh, points, manual_options, NULL, NULL, NULL), "out_axis");
+    NULL_ARGUMENT(sherd_points_on_longest_rill(NULL, &axis, rill_points, &count), "mesh");
+    NULL_ARGUMENT(sherd_points_on_longest_rill(mesh, NULL, rill_points, &count), "axis");
+    NULL_ARGUMENT(sherd_points_on_longest_rill(mesh, &axis, NULL, &count), "out_points");
+    NULL_ARGUMENT(sherd_points_on_longest_rill(mesh, &axis, rill_points, NULL), "out_point_count");
+    /* A tetrahedron has no rill: nothing written, the count 0. */
+    rill_points[0] = 42.0;
+    CHECK_OK(sherd_points_on_longest_rill(mesh, &axis, rill_points, &count));
+    CHECK(count == 0 && rill_points[0] == 42.0);
     nan_points[4] = NAN;
     CHECK_STATUS(sherd_orient_from_three_points(mesh, nan_points, NULL, &axis, NULL, NULL),
                  SHERD_STATUS_INVALID_ARGUMENT);

@@ -300,6 +300,8 @@ def test_real_scan(real_scan):
         with pytest.raises(pymeshlab.PyMeshLabException) as raised:
             refused.apply_filter("sherd_orient", refine=False)
         assert found.reason in str(raised.value)
+        # The rill points under the declined axis, without a second orientation.
+        assert "longest wheel rill" in str(raised.value), str(raised.value)
         # pymeshlab 2022.2 crashes on the next filter in a MeshSet where one failed.
         ms = load(real_scan)
         ms.apply_filter("set_matrix", transformmatrix=expected)

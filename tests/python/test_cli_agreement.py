@@ -105,6 +105,10 @@ def test_the_pipeline_step_by_step_agrees_with_the_cli(scan, cli_record):
     assert orientation.oriented == (isinstance(cli_record, CommandFailed) or cli_record["status"] in ("ok", "axis_uncertain"))
     if not orientation.oriented:
         assert cli_record["reason"] in orientation.reason
+        if not orientation.sense_uncertain:
+            # Where to pick, under the declined axis, as the CLI's record gives it.
+            points = sherd.points_on_longest_rill(mesh, orientation.axis)
+            assert_close(None if points is None else points.tolist(), cli_record["manual_points_on_rill"], "rill points")
         return
     refine = lambda: sherd.refine(mesh, orientation.axis, criterion="auto", surface="both")  # noqa: E731
     if fails_like_the_cli(cli_record, refine):

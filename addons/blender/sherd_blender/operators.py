@@ -175,19 +175,20 @@ class SHERD_OT_orient_automatic(SherdOperator, bpy.types.Operator):
             mesh, _ = library_mesh(obj)
             update(1)
             orientation = sherd().orient_automatic(mesh)
-        if not orientation.oriented and not orientation.sense_uncertain and _select_rill_points(obj, mesh):
+        if not orientation.oriented and not orientation.sense_uncertain and _select_rill_points(obj, mesh, orientation.axis):
             self.notify({'WARNING'}, f"needs manual orientation: {orientation.reason}. Three vertices on its "
                         "longest wheel rill are now selected: check them in Edit Mode, then Orient from 3 vertices")
             return {'CANCELLED'}
         return _finish_orientation(self, obj, orientation, "automatic")
 
 
-def _select_rill_points(obj, mesh):
+def _select_rill_points(obj, mesh, declined_axis):
     """Selects the vertices of ``obj`` nearest to the three points the library suggests on
-    the sherd's longest wheel rill (the pipeline's ``manual_points_on_rill``, world
-    coordinates); False, selection untouched, when it traced no rill."""
-    points = sherd().analyse(mesh).record.get("manual_points_on_rill")
-    if not points:
+    the sherd's longest wheel rill under the axis the orientation declined (what the
+    pipeline's ``manual_points_on_rill`` gives, world coordinates); False, selection
+    untouched, when it traced no rill."""
+    points = sherd().points_on_longest_rill(mesh, declined_axis)
+    if points is None:
         return False
     positions = mesh.positions
     nearest = [int(np.argmin(((positions - np.asarray(p, dtype=np.float64)) ** 2).sum(axis=1))) for p in points]

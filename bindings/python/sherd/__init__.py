@@ -28,7 +28,7 @@ from .export import (export_oriented_ply, export_profile_csv, export_reconstruct
                      profile_csv, profile_section)
 from .mesh import Attribute, Mesh
 from .pipeline import (Analysis, Measurements, Orientation, Refinement, analyse, measure, orient_automatic,
-                       orient_from_three_points, process_file, refine, synthetic_sherd)
+                       orient_from_three_points, points_on_longest_rill, process_file, refine, synthetic_sherd)
 from .reconstruct import Regularity, reconstruct, regularity
 
 if lib.sherd_abi_version() != ABI_VERSION:
@@ -44,6 +44,6 @@ __all__ = [
     "NeedsManualOrientationError", "SenseUncertainError", "NotAvailableError", "NotConvergedError", "NullPointerError", "PanicError",
     "ParseError", "SherdError", "SherdIOError", "Status", "export_oriented_ply", "export_profile_csv",
     "export_reconstruction_ply", "Measurements", "measure", "Refinement", "refine",
-    "last_error_message", "most_informative_angle", "orient_automatic", "orient_from_three_points", "Orientation",
+    "last_error_message", "most_informative_angle", "orient_automatic", "orient_from_three_points", "Orientation", "points_on_longest_rill",
     "oriented_transform", "profile_csv", "profile_section", "synthetic_sherd",
 ]

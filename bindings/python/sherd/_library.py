@@ -163,6 +163,7 @@ _declare("sherd_orient_automatic", Status, SherdMesh_p, SherdOptions_p, SherdAxi
          ctypes.POINTER(SherdOrientReport), ctypes.POINTER(SherdBuffer_p))
 _declare("sherd_orient_from_three_points", Status, SherdMesh_p, c_double_p, SherdOptions_p, SherdAxis_p,
          ctypes.POINTER(SherdOrientReport), ctypes.POINTER(SherdBuffer_p))
+_declare("sherd_points_on_longest_rill", Status, SherdMesh_p, SherdAxis_p, c_double_p, c_size_t_p)
 
 
 class SherdRefinement(ctypes.Structure):

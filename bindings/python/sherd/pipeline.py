@@ -104,6 +104,18 @@ def orient_from_three_points(mesh, points, *, keep_fraction=None, max_pick_dista
     return _orientation(status, axis, summary, report)
 
 
+def points_on_longest_rill(mesh, axis):
+    """Three points, (3, 3), on the longest wheel rill traced under ``axis`` (millimetres):
+    where to pick for :func:`orient_from_three_points` on a sherd :func:`orient_automatic`
+    declines, under the axis it still gives. None on a smooth wall."""
+    points = np.zeros(9, dtype=np.float64)
+    count = ctypes.c_size_t()
+    c_axis = axis.to_c()
+    check(c.lib.sherd_points_on_longest_rill(mesh.handle, ctypes.byref(c_axis), as_pointer(points, ctypes.c_double),
+                                             ctypes.byref(count)))
+    return points.reshape(3, 3) if count.value == 3 else None
+
+
 @dataclass
 class Refinement:
     """A refined axis, the criterion and surface used, the residuals, the full report and
