@@ -4,16 +4,11 @@
 //! off.
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
-use nalgebra::{Unit, UnitQuaternion};
-use sherd::mesh::Vector;
-use sherd::orient::{orient_automatic, Axis, OrientOptions};
+use sherd::orient::accuracy::perturbed_axis;
+use sherd::orient::{orient_automatic, OrientOptions};
 use sherd::refine::{refine, Criterion, RefineOptions};
 use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
 
-fn tilted(truth: &Axis) -> Axis {
-    let turn = Unit::new_normalize(truth.rotation_from_z() * Vector::x());
-    Axis::new(truth.point, UnitQuaternion::from_axis_angle(&turn, 3f64.to_radians()) * truth.direction.into_inner())
-}
 
 fn bench(c: &mut Bench) {
     let sherd = synthetic_sherd(7, &SherdOptions { target_faces: 20_000, ..SherdOptions::for_part(SherdPart::Rim) });
@@ -34,7 +29,7 @@ fn bench(c: &mut Bench) {
             refine(&body.mesh, &orientation.axis, &RefineOptions::default()).unwrap()
         })
     });
-    let start = tilted(&sherd.truth.axis);
+    let start = perturbed_axis(&sherd.truth.axis, 0.0, 3.0, 0.0, 0.0);
     for criterion in [Criterion::Circles, Criterion::Tangent, Criterion::Profile, Criterion::Pareto] {
         group.bench_function(format!("refine({criterion:?}) from 3 deg off"), |b| {
             // A criterion may refuse this sherd (an error is an answer, and its cost is measured too).

@@ -19,12 +19,11 @@
 
 use std::time::Instant;
 
-use nalgebra::{Unit, UnitQuaternion};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use sherd::statistics::nearest_rank_quantile;
-use sherd::mesh::Vector;
+use sherd::orient::accuracy::perturbed_axis;
 use sherd::orient::{mean_point_distance_mm, orient_automatic, Axis, OrientOptions};
 use sherd::profile::measure::{measure, MeasureOptions, Measurements};
 use sherd::refine::{refine, Criterion, RefineOptions};
@@ -63,13 +62,10 @@ fn env_number(name: &str, default: f64) -> f64 {
 /// shifted by `START_SHIFT_MM` in a random horizontal direction.
 fn perturbed(truth: &Axis, seed: u64) -> Axis {
     let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed);
-    let frame_back = truth.rotation_from_z();
-    let azimuth: f64 = rng.random_range(0.0..std::f64::consts::TAU);
-    let turn_axis = Unit::new_normalize(frame_back * Vector::new(azimuth.cos(), azimuth.sin(), 0.0));
-    let direction = UnitQuaternion::from_axis_angle(&turn_axis, env_number("REFINE_ACCURACY_START_TILT_DEG", START_TILT_DEG).to_radians()) * truth.direction.into_inner();
+    let tilt_azimuth: f64 = rng.random_range(0.0..std::f64::consts::TAU);
     let shift_azimuth: f64 = rng.random_range(0.0..std::f64::consts::TAU);
-    let shift = frame_back * Vector::new(shift_azimuth.cos(), shift_azimuth.sin(), 0.0) * START_SHIFT_MM;
-    Axis::new(truth.point + shift, direction)
+    let tilt_deg = env_number("REFINE_ACCURACY_START_TILT_DEG", START_TILT_DEG);
+    perturbed_axis(truth, tilt_azimuth, tilt_deg, shift_azimuth, START_SHIFT_MM)
 }
 
 fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {

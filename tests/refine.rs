@@ -310,9 +310,7 @@ fn the_profile_criterion_recovers_perfect_solids_of_the_synthetic_corpus() {
         let sherd = &generate_vessel(vessel_seed, &options).fragments[fragment];
         let truth = sherd.truth.axis;
         // The true axis turned by 3 degrees about a horizontal line and shifted by 2 mm.
-        let frame = truth.rotation_from_z();
-        let turn = UnitQuaternion::from_axis_angle(&nalgebra::Unit::new_normalize(frame * Vector::new(0.6, 0.8, 0.0)), 3f64.to_radians());
-        let start = Axis::new(truth.point + frame * Vector::new(2.0, 0.0, 0.0), turn * truth.direction.into_inner());
+        let start = sherd::orient::accuracy::perturbed_axis(&truth, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
         let refined = refine(&sherd.mesh, &start, &RefineOptions { criterion: Criterion::Profile, ..Default::default() }).unwrap();
         let angle = refined.axis.line_angle_to_deg(&truth);
         let distance = mean_point_distance_mm(&sherd.mesh.positions, &refined.axis, &truth);

@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::{mean_point_distance_mm, orient_automatic, OrientOptions, Orientation};
+use super::{mean_point_distance_mm, orient_automatic, Axis, OrientOptions, Orientation};
 use crate::statistics::nearest_rank_quantile;
 use crate::synth::{SherdPart, SynthSherd};
 
@@ -78,6 +78,18 @@ impl FragmentOutcome {
     pub fn wrong_distance_unflagged(&self) -> bool {
         !self.flagged && self.mean_point_distance_mm > WRONG_DISTANCE_MM
     }
+}
+
+/// A simulated pre-orientation error: `truth` turned by `tilt_deg` about the horizontal
+/// direction at `tilt_azimuth_rad` and its point moved by `shift_mm` along the horizontal
+/// direction at `shift_azimuth_rad`, both azimuths in the axis's own frame
+/// ([`Axis::rotation_from_z`]). The refinement's accuracy example, tests and benches start
+/// from it.
+pub fn perturbed_axis(truth: &Axis, tilt_azimuth_rad: f64, tilt_deg: f64, shift_azimuth_rad: f64, shift_mm: f64) -> Axis {
+    let frame = truth.rotation_from_z();
+    let horizontal = |azimuth: f64| frame * crate::mesh::Vector::new(azimuth.cos(), azimuth.sin(), 0.0);
+    let turn = nalgebra::UnitQuaternion::from_axis_angle(&nalgebra::Unit::new_normalize(horizontal(tilt_azimuth_rad)), tilt_deg.to_radians());
+    Axis::new(truth.point + horizontal(shift_azimuth_rad) * shift_mm, turn * truth.direction.into_inner())
 }
 
 /// Orients `sherd` and compares with its truth.

@@ -371,18 +371,24 @@ mod tests {
         assert_eq!(axis_crossing_curvature_radius_mm(&cap_lines(|_| 0.0, 3.0), &aside, 3.5), None);
     }
 
-    #[test]
-    fn an_axis_through_a_knob_is_flagged() {
-        let mut report = OrientReport {
+    /// The report of a sherd every test of the verdict passes: spread normals that meet
+    /// one line (1 degree off) and no sphere, nearly all inliers, a floor or level edge
+    /// under the axis. Each test spoils one figure.
+    fn clear_report() -> OrientReport {
+        OrientReport {
             normal_spread: 0.5,
             concurrency_ratio: 0.1,
             residual_angle_deg: 1.0,
             sphere_residual_angle_deg: 10.0,
             inlier_fraction: 0.9,
             direction_strength: 1.0,
-            axis_crossing_curvature_radius_mm: Some(60.0),
             ..Default::default()
-        };
+        }
+    }
+
+    #[test]
+    fn an_axis_through_a_knob_is_flagged() {
+        let mut report = OrientReport { axis_crossing_curvature_radius_mm: Some(60.0), ..clear_report() };
         let limits = VerdictThresholds::default();
         assert_eq!(judge(&report, 1.0, 1.0, &limits), Verdict::Oriented);
         report.axis_crossing_curvature_radius_mm = Some(4.8);
@@ -393,14 +399,10 @@ mod tests {
     #[test]
     fn a_crossing_competitor_is_ruled_out_only_by_the_sense_cues() {
         let mut report = OrientReport {
-            normal_spread: 0.5,
-            concurrency_ratio: 0.1,
             residual_angle_deg: 0.3,
             sphere_residual_angle_deg: 4.0,
-            inlier_fraction: 0.9,
-            direction_strength: 1.0,
             competitor: Some((90.0, 1.21)),
-            ..Default::default()
+            ..clear_report()
         };
         let limits = VerdictThresholds::default();
         // A floor or a level rim under the winner: the vessel's anatomy picks it.
@@ -419,15 +421,7 @@ mod tests {
 
     #[test]
     fn normals_that_miss_the_axis_by_degrees_are_flagged() {
-        let mut report = OrientReport {
-            normal_spread: 0.5,
-            concurrency_ratio: 0.1,
-            residual_angle_deg: 1.4,
-            sphere_residual_angle_deg: 10.0,
-            inlier_fraction: 0.9,
-            direction_strength: 1.0,
-            ..Default::default()
-        };
+        let mut report = OrientReport { residual_angle_deg: 1.4, ..clear_report() };
         let limits = VerdictThresholds::default();
         assert_eq!(judge(&report, 1.0, 1.0, &limits), Verdict::Oriented);
         report.residual_angle_deg = 2.8;
