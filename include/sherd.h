@@ -556,10 +556,15 @@ typedef struct {
    */
   double axis_angle_interval_deg[2];
   /**
-   * 1 when that interval reaches past 4 degrees: the axis is uncertain, and it and these
-   * figures want a look before they are used (the JSON's notes say how far); 0
-   * otherwise. A caller whose `size` ends before this field (an older header) is not
-   * written to here.
+   * Interval `[0, upper]` of the paper's mean point distance between the true and the
+   * given axis, mm. A caller whose `size` ends before this field (an older header) is
+   * not written to here, nor in the fields after it.
+   */
+  double axis_distance_interval_mm[2];
+  /**
+   * 1 when the angle interval reaches past 4 degrees or the distance interval past
+   * 5 mm: the axis is uncertain, and it and these figures want a look before they are
+   * used (the JSON's notes say how far); 0 otherwise.
    */
   uint32_t axis_uncertain;
 } SherdMeasurements;
@@ -641,8 +646,9 @@ typedef struct {
   /**
    * 1 when the refinement doubts its own axis: the skins barely fix its position
    * (`flag_reason` in `sherd_refinement_report_json` says how little); 0 otherwise.
-   * Such an axis is the best guess, to check before its figures are used. A caller whose
-   * `size` ends before this field (an older header) is not written to here.
+   * `sherd_measure`'s intervals say how far such an axis may be off (on dense scans it
+   * is often right: the test was calibrated on coarse fragments). A caller whose `size`
+   * ends before this field (an older header) is not written to here.
    */
   uint32_t flagged;
 } SherdRefineReport;

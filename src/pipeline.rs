@@ -13,7 +13,7 @@ use crate::mesh::io::read_mesh_with_report;
 use crate::mesh::repair::{repair, RepairOptions, RepairReport};
 use crate::mesh::{Mesh, Point};
 use crate::orient::{decimated_copy, orient_automatic_with_decimated, orient_from_three_points, Axis, AxisRecord, ManualOptions, OrientOptions, Orientation, Verdict};
-use crate::profile::measure::{measure_with_bootstrap_mesh, MeasureOptions, Measurements, MAX_UNFLAGGED_AXIS_INTERVAL_DEG};
+use crate::profile::measure::{measure_with_bootstrap_mesh, MeasureOptions, Measurements};
 use crate::profile::rills::{rill_check, three_points_on, trace_rills_under, Rill, RillCheck, RillOptions};
 use crate::refine::{chosen_criterion, refine, refine_placing_on, Criterion, RefineOptions, Refinement};
 use crate::{Error, Result};
@@ -106,23 +106,14 @@ impl Analysis {
     }
 
     /// Why the final axis wants a look before its figures are used, although the
-    /// orientation found it: the refinement's flag (the skins barely fix its position)
-    /// and the bootstrap's (its 95% angle interval reaches past
-    /// [`MAX_UNFLAGGED_AXIS_INTERVAL_DEG`]). Empty when neither doubts it. On the
-    /// refinement corpus (332 fragments) 11 of the 38 axes these doubt are more than 4 mm
-    /// off, against 5 of the 63 they leave alone: under `ok` they were 16 wrong of 101.
-    pub fn axis_doubts(&self) -> Vec<String> {
-        let mut doubts = Vec::new();
-        if let Some(reason) = self.refinement.as_ref().and_then(|r| r.report.flag_reason.as_ref()) {
-            doubts.push(reason.clone());
-        }
-        if let Some(m) = self.measurements.as_ref().filter(|m| m.axis_uncertain) {
-            let upper = m.axis_angle_interval_deg.map_or(f64::NAN, |[_, upper]| upper);
-            doubts.push(format!(
-                "the axis's 95% angle interval reaches {upper:.1} degrees (more than {MAX_UNFLAGGED_AXIS_INTERVAL_DEG})"
-            ));
-        }
-        doubts
+    /// orientation found it: the measurements' doubts (the bootstrap's 95% intervals of its
+    /// direction or position reach what makes an axis wrong; see
+    /// [`Measurements::axis_doubts`]). Empty when they have none. Not the refinement's own
+    /// flag (Eq. 2 barely rises along the radius): calibrated on coarse fragments, it
+    /// flagged good axes of dense scans and missed wrong ones (see
+    /// [`crate::profile::measure::MAX_UNFLAGGED_AXIS_DISTANCE_MM`]).
+    pub fn axis_doubts(&self) -> &[String] {
+        self.measurements.as_ref().map_or(&[], |m| &m.axis_doubts)
     }
 }
 
@@ -291,8 +282,9 @@ pub const STATUS_NEEDS_MANUAL: &str = "needs_manual_orientation";
 /// up (base to rim): not drawn.
 pub const STATUS_SENSE_UNCERTAIN: &str = "sense_uncertain";
 /// Status of a sherd oriented, refined, measured (and drawn in a batch) whose axis is not
-/// pinned down ([`Analysis::axis_doubts`], in `reason`): a best guess to check before its
-/// figures are used.
+/// pinned down: the bootstrap's intervals of its direction or position are wide
+/// ([`Analysis::axis_doubts`], in `reason`). A best guess to check before its figures are
+/// used.
 pub const STATUS_AXIS_UNCERTAIN: &str = "axis_uncertain";
 /// Status of a sherd that could not be processed (the reason is in `error`).
 pub const STATUS_ERROR: &str = "error";
@@ -317,6 +309,9 @@ pub struct SherdRecord {
     pub residual_mm: Option<f64>,
     /// 95% interval of the axis angle error `[0, upper]`, degrees.
     pub axis_angle_interval_deg: Option<[f64; 2]>,
+    /// 95% interval of the paper's mean point distance between the true axis and this
+    /// one `[0, upper]`, mm.
+    pub axis_distance_interval_mm: Option<[f64; 2]>,
     /// Outer rim radius, mm; null when no level rim is preserved.
     pub rim_radius_mm: Option<f64>,
     /// Rim diameter, mm.
@@ -384,7 +379,7 @@ impl SherdRecord {
             if record.status == STATUS_OK {
                 record.status = STATUS_AXIS_UNCERTAIN.into();
             }
-            record.reason = Some(record.reason.iter().cloned().chain(doubts).collect::<Vec<_>>().join("; "));
+            record.reason = Some(record.reason.iter().cloned().chain(doubts.iter().cloned()).collect::<Vec<_>>().join("; "));
         }
         let axis = analysis.axis();
         let axis_in_scan_units = Axis { point: Point::from(axis.point.coords / analysis.millimetres_per_unit), direction: axis.direction };
@@ -395,6 +390,7 @@ impl SherdRecord {
         });
         if let Some(m) = &analysis.measurements {
             record.axis_angle_interval_deg = m.axis_angle_interval_deg;
+            record.axis_distance_interval_mm = m.axis_distance_interval_mm;
             record.rim_radius_mm = m.rim_radius_mm;
             record.rim_diameter_mm = m.rim_diameter_mm;
             record.rim_diameter_interval_mm = m.rim_diameter_interval_mm;
@@ -411,7 +407,7 @@ impl SherdRecord {
     }
 
     /// The columns of `report.csv`.
-    pub const CSV_HEADER: &'static str = "file,status,reason,rim_diameter_mm,rim_diameter_low_mm,rim_diameter_high_mm,base_diameter_mm,base_diameter_low_mm,base_diameter_high_mm,sector_angle_deg,sector_percent,height_mm,wall_thickness_mm,capacity_litres,axis_angle_upper_deg,residual_mm,method,drawing,read_s,repair_s,orient_s,refine_s,measure_s,draw_s,rill_count,rill_slope_deg";
+    pub const CSV_HEADER: &'static str = "file,status,reason,rim_diameter_mm,rim_diameter_low_mm,rim_diameter_high_mm,base_diameter_mm,base_diameter_low_mm,base_diameter_high_mm,sector_angle_deg,sector_percent,height_mm,wall_thickness_mm,capacity_litres,axis_angle_upper_deg,residual_mm,method,drawing,read_s,repair_s,orient_s,refine_s,measure_s,draw_s,rill_count,rill_slope_deg,axis_distance_upper_mm";
 
     /// This record as a row of `report.csv` (RFC 4180 quoting).
     pub fn csv_row(&self) -> String {
@@ -448,6 +444,7 @@ impl SherdRecord {
             format!("{:.3}", t.draw_s),
             self.rills.map(|r| r.count.to_string()).unwrap_or_default(),
             number(self.rills.map(|r| r.slope_deg)),
+            high(self.axis_distance_interval_mm),
         ]
         .join(",")
     }

@@ -76,9 +76,11 @@ fn a011_is_oriented_from_three_points_on_its_longest_rill_with_its_rills_horizon
         format!("{x},{y},{z}")
     }).collect();
     let json = orient_json(&path, &["--manual", &picks.join(";")]);
-    // The rill fixes the direction; the skins fix the position only loosely on this short
-    // arc, which the record says (axis_uncertain, with the reason) rather than hide.
+    // The rill fixes the direction to the bootstrap's 4 degrees, at the limit where the
+    // record starts to doubt it (3.8 deg from the points as the README rounds them, 4.1
+    // from these): ok or axis_uncertain, its position within 5 mm either way.
     assert!(json["status"] == "ok" || json["status"] == "axis_uncertain", "{json:#}");
+    assert!(json["axis_distance_interval_mm"][1].as_f64().is_some_and(|upper| upper < 5.0), "{json:#}");
     let rills = &json["rills"];
     assert!(rills["count"].as_u64().unwrap() >= 3, "{json:#}");
     let slope = rills["slope_deg"].as_f64().unwrap();
@@ -313,7 +315,7 @@ fn batch_reports_every_sherd_keeps_going_past_a_broken_file_exits_1_and_resumes(
     let rows = csv_rows(&output.join("report.csv"));
     assert_eq!(rows.len(), scans.len() + 1, "one row per file");
     let header = split_csv(fs::read_to_string(output.join("report.csv")).unwrap().lines().next().unwrap());
-    assert_eq!(header[header.len() - 2..], ["rill_count", "rill_slope_deg"], "{header:?}");
+    assert_eq!(header[header.len() - 3..], ["rill_count", "rill_slope_deg", "axis_distance_upper_mm"], "{header:?}");
     assert!(rows.iter().all(|row| row.len() == header.len()), "every row has the header's columns");
     let broken = rows.iter().find(|r| r[0].ends_with("zz-broken.ply")).expect("the broken file has a row");
     assert!(broken[1].starts_with("error: "), "{broken:?}");

@@ -318,7 +318,7 @@ std::map<std::string, QVariant> refine(MeshModel& model, const RichParameterList
 	           report.section_count, report.tilt_deg, report.shift_mm, report.start_residual_mm, report.residual_mm);
 	logger.log("Sherd: refined axis %s", qUtf8Printable(axisText(axis)));
 	if (report.flagged)
-		logger.log("Sherd: the refined axis is uncertain: the skins barely fix its position; check it before using it.");
+		logger.log("Sherd: the skins barely fix the refined axis's position; the measure filter's intervals say how far off it may be.");
 	return {{"tilt_deg", report.tilt_deg}, {"shift_mm", report.shift_mm}, {"residual_mm", report.residual_mm}};
 }
 
@@ -358,8 +358,8 @@ std::map<std::string, QVariant> measure(MeshModel& model, const RichParameterLis
 	logger.log("Sherd: wall thickness %s", qUtf8Printable(figure(m.wall_thickness_mm, "mm", 2)));
 	logger.log("Sherd: capacity %s", qUtf8Printable(figure(m.capacity_litres, "litres", 3)));
 	if (m.axis_uncertain)
-		logger.log("Sherd: the axis is uncertain: its 95%% angle interval reaches %.1f deg; check it before using these figures.",
-		           m.axis_angle_interval_deg[1]);
+		logger.log("Sherd: the axis is uncertain: its 95%% intervals reach %.1f deg and %.1f mm of mean point distance; check it before using these figures.",
+		           m.axis_angle_interval_deg[1], m.axis_distance_interval_mm[1]);
 	return {
 		{"rim_diameter_mm", m.rim_diameter_mm},
 		{"base_diameter_mm", m.base_diameter_mm},

@@ -45,10 +45,13 @@ pub struct SherdMeasurements {
     pub capacity_litres: f64,
     /// Interval of the axis direction's error, degrees.
     pub axis_angle_interval_deg: [f64; 2],
-    /// 1 when that interval reaches past 4 degrees: the axis is uncertain, and it and these
-    /// figures want a look before they are used (the JSON's notes say how far); 0
-    /// otherwise. A caller whose `size` ends before this field (an older header) is not
-    /// written to here.
+    /// Interval `[0, upper]` of the paper's mean point distance between the true and the
+    /// given axis, mm. A caller whose `size` ends before this field (an older header) is
+    /// not written to here, nor in the fields after it.
+    pub axis_distance_interval_mm: [f64; 2],
+    /// 1 when the angle interval reaches past 4 degrees or the distance interval past
+    /// 5 mm: the axis is uncertain, and it and these figures want a look before they are
+    /// used (the JSON's notes say how far); 0 otherwise.
     pub axis_uncertain: u32,
 }
 
@@ -68,6 +71,7 @@ impl Default for SherdMeasurements {
             wall_thickness_mm: f64::NAN,
             capacity_litres: f64::NAN,
             axis_angle_interval_deg: [f64::NAN; 2],
+            axis_distance_interval_mm: [f64::NAN; 2],
             axis_uncertain: 0,
         }
     }
@@ -75,8 +79,8 @@ impl Default for SherdMeasurements {
 
 unsafe impl SizedStruct for SherdMeasurements {
     const NAME: &'static str = "SherdMeasurements";
-    /// The first version ended before `axis_uncertain`.
-    const MIN_SIZE: usize = std::mem::offset_of!(SherdMeasurements, axis_uncertain);
+    /// The first version ended before `axis_distance_interval_mm`.
+    const MIN_SIZE: usize = std::mem::offset_of!(SherdMeasurements, axis_distance_interval_mm);
 }
 
 impl SherdMeasurements {
@@ -97,6 +101,7 @@ impl SherdMeasurements {
             wall_thickness_mm: or_nan(m.wall_thickness_mm),
             capacity_litres: or_nan(m.capacity_litres),
             axis_angle_interval_deg: interval(m.axis_angle_interval_deg),
+            axis_distance_interval_mm: interval(m.axis_distance_interval_mm),
             axis_uncertain: u32::from(m.axis_uncertain),
         }
     }

@@ -117,8 +117,9 @@ pub struct SherdRefineReport {
     pub pareto_point_count: usize,
     /// 1 when the refinement doubts its own axis: the skins barely fix its position
     /// (`flag_reason` in `sherd_refinement_report_json` says how little); 0 otherwise.
-    /// Such an axis is the best guess, to check before its figures are used. A caller whose
-    /// `size` ends before this field (an older header) is not written to here.
+    /// `sherd_measure`'s intervals say how far such an axis may be off (on dense scans it
+    /// is often right: the test was calibrated on coarse fragments). A caller whose `size`
+    /// ends before this field (an older header) is not written to here.
     pub flagged: u32,
 }
 

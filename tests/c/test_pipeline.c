@@ -60,7 +60,9 @@ static void measure_and_export(const SherdMesh *mesh, const SherdAxis *axis, con
     CHECK(fabs(measurements.rim_diameter_interval_mm[0] / measurements.rim_diameter_mm - 1.0) < 0.05);
     CHECK(fabs(measurements.rim_diameter_interval_mm[1] / measurements.rim_diameter_mm - 1.0) < 0.05);
     CHECK(measurements.sector_angle_deg > 0.0 && measurements.sector_angle_deg < 360.0);
-    CHECK(measurements.axis_uncertain == (measurements.axis_angle_interval_deg[1] > 4.0));
+    CHECK(measurements.axis_distance_interval_mm[0] == 0.0 && measurements.axis_distance_interval_mm[1] >= 0.0);
+    CHECK(measurements.axis_uncertain ==
+          (measurements.axis_angle_interval_deg[1] > 4.0 || measurements.axis_distance_interval_mm[1] > 5.0));
     CHECK_NEAR(measurements.sector_percent, measurements.sector_angle_deg / 3.6, 1e-9);
     CHECK(measurements.height_mm > 0.0);
     CHECK(isnan(measurements.capacity_litres)); /* a rim piece: no complete profile */

@@ -247,8 +247,8 @@ class SHERD_OT_refine(SherdOperator, bpy.types.Operator):
         obj["sherd_pareto_front"] = refinement.pareto_front.tolist()
         summary = f"refined: tilt {refinement.tilt_deg:.2f} deg, residual {refinement.residual_mm:.3f} mm"
         if refinement.flagged:
-            # Kept and stored (it is the best guess), but not presented as a sure axis.
-            self.notify({'WARNING'}, f"{summary}; the axis is uncertain: {refinement.report.get('flag_reason')}")
+            # Kept and stored (the best guess); the measurements' intervals say how far off.
+            self.notify({'WARNING'}, f"{summary}; {refinement.report.get('flag_reason')}: Measure gives the intervals")
         else:
             self.notify({'INFO'}, summary)
         return {'FINISHED'}

@@ -210,6 +210,7 @@ class SherdMeasurements(ctypes.Structure):
         ("wall_thickness_mm", ctypes.c_double),
         ("capacity_litres", ctypes.c_double),
         ("axis_angle_interval_deg", ctypes.c_double * 2),
+        ("axis_distance_interval_mm", ctypes.c_double * 2),
         ("axis_uncertain", ctypes.c_uint32),
     ]
 

@@ -135,7 +135,8 @@ class Refinement:
     report: dict
     flagged: bool = False
     """The refinement doubts its axis (the skins barely fix its position):
-    ``report["flag_reason"]`` says how little; the axis is the best guess, to check."""
+    ``report["flag_reason"]`` says how little; :func:`measure`'s intervals say how far off
+    it may be."""
 
 
 def _refine_options(criterion="auto", surface="both", section_count=0, search_bound_deg=None):
@@ -196,8 +197,11 @@ class Measurements:
     axis_angle_interval_deg: tuple
     details: dict
     axis_uncertain: bool = False
-    """The axis angle interval reaches past 4 degrees: the axis and these figures want a
-    look before they are used (``details["notes"]`` says how far)."""
+    """The axis angle interval reaches past 4 degrees or the distance interval past 5 mm:
+    the axis and these figures want a look before they are used (``details["notes"]``
+    says how far)."""
+    axis_distance_interval_mm: tuple = (float("nan"), float("nan"))
+    """(0, upper): the paper's mean point distance between the true axis and this one, mm."""
 
 
 def measure(mesh, axis, *, bootstrap_samples=None, bootstrap_seed=None, confidence=None, refine_options=None):
@@ -222,7 +226,7 @@ def measure(mesh, axis, *, bootstrap_samples=None, bootstrap_seed=None, confiden
                         out.base_radius_mm, out.base_diameter_mm, tuple(out.base_diameter_interval_mm),
                         out.sector_angle_deg, out.sector_percent, out.height_mm, out.wall_thickness_mm,
                         out.capacity_litres, tuple(out.axis_angle_interval_deg), take_json(details),
-                        bool(out.axis_uncertain))
+                        bool(out.axis_uncertain), tuple(out.axis_distance_interval_mm))
 
 
 @dataclass

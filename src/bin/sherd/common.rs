@@ -205,6 +205,9 @@ pub fn describe(record: &sherd::pipeline::SherdRecord) -> String {
     if let Some([_, hi]) = record.axis_angle_interval_deg {
         let _ = writeln!(text, "  axis angle uncertainty: {hi:.2} deg (95%)");
     }
+    if let Some([_, hi]) = record.axis_distance_interval_mm {
+        let _ = writeln!(text, "  axis position uncertainty: {hi:.2} mm of mean point distance (95%)");
+    }
     if let Some(r) = record.residual_mm {
         let _ = writeln!(text, "  residual: {r:.3} mm");
     }

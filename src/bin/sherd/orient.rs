@@ -20,7 +20,7 @@ reported as needs_manual_orientation with the reason (and, where wheel rills are
 traced on it, three points on the longest for --manual); one whose axis line is found\n\
 but not which way is up (no level rim, no floor, a wall that hardly flares) as\n\
 sense_uncertain, still refined and measured; one whose axis is found but not pinned\n\
-down (the skins barely fix its position, or its 95% angle interval is wide) as\n\
+down (the 95% interval of its direction or of its position is wide) as\n\
 axis_uncertain, with the reason: check it before using its figures. The exit code is 0\n\
 for all three. The rills'\n\
 slope under the axis (0 when it puts them horizontal) is printed when any are traced."
