@@ -21,6 +21,8 @@ use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
 /// One sherd's outcome under one mode.
 struct Outcome {
     oriented: bool,
+    /// Oriented, but the record's status is `axis_uncertain` (its intervals doubt it).
+    axis_uncertain: bool,
     angle_deg: f64,
     distance_mm: f64,
     rim_error_percent: Option<f64>,
@@ -38,6 +40,12 @@ fn median(mut values: Vec<f64>) -> f64 {
 
 fn maximum(values: &[f64]) -> f64 {
     values.iter().copied().fold(f64::NAN, f64::max)
+}
+
+/// "N (W)": how many outcomes, and how many of them more than 4 mm off (the paper's test).
+fn with_wrong<'a>(outcomes: impl Iterator<Item = &'a &'a Outcome>) -> String {
+    let distances: Vec<f64> = outcomes.map(|o| o.distance_mm).collect();
+    format!("{} ({})", distances.len(), distances.iter().filter(|&&d| d > 4.0).count())
 }
 
 fn main() {
@@ -73,6 +81,7 @@ fn main() {
             let rim_interval = analysis.measurements.as_ref().and_then(|m| m.rim_diameter_interval_mm);
             let outcome = Outcome {
                 oriented: analysis.is_oriented(),
+                axis_uncertain: !analysis.axis_doubts().is_empty(),
                 angle_deg: axis.line_angle_to_deg(&truth.axis),
                 distance_mm: mean_point_distance_mm(&sherd.mesh.positions, axis, &truth.axis),
                 rim_error_percent: rim.map(|(measured, true_radius)| 100.0 * (measured - true_radius).abs() / true_radius),
@@ -103,15 +112,15 @@ fn main() {
             outcomes.push(outcome);
         }
     }
-    println!("| mode | sherds | oriented | median angle deg | max angle deg (oriented) | median dist mm | max dist mm (oriented) | rim radius error median % (n) | rim interval coverage | angle interval coverage | median refine s | median measure s | median total s |");
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("| mode | sherds | oriented | median angle deg | max angle deg (oriented) | median dist mm | max dist mm (oriented) | rim radius error median % (n) | rim interval coverage | angle interval coverage | ok (> 4 mm off) | axis_uncertain (> 4 mm off) | median refine s | median measure s | median total s |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (mode, outcomes) in &table {
         let oriented: Vec<&Outcome> = outcomes.iter().filter(|o| o.oriented).collect();
         let rim_errors: Vec<f64> = oriented.iter().filter_map(|o| o.rim_error_percent).collect();
         let covered: Vec<bool> = oriented.iter().filter_map(|o| o.rim_covered).collect();
         let angle_covered: Vec<bool> = oriented.iter().filter_map(|o| o.angle_covered).collect();
         println!(
-            "| {mode} | {} | {} | {:.3} | {:.3} | {:.3} | {:.3} | {:.2} ({}) | {}/{} | {}/{} | {:.2} | {:.2} | {:.2} |",
+            "| {mode} | {} | {} | {:.3} | {:.3} | {:.3} | {:.3} | {:.2} ({}) | {}/{} | {}/{} | {} | {} | {:.2} | {:.2} | {:.2} |",
             outcomes.len(),
             oriented.len(),
             median(oriented.iter().map(|o| o.angle_deg).collect()),
@@ -124,6 +133,8 @@ fn main() {
             covered.len(),
             angle_covered.iter().filter(|c| **c).count(),
             angle_covered.len(),
+            with_wrong(oriented.iter().filter(|o| !o.axis_uncertain)),
+            with_wrong(oriented.iter().filter(|o| o.axis_uncertain)),
             median(outcomes.iter().map(|o| o.refine_s).collect()),
             median(outcomes.iter().map(|o| o.measure_s).collect()),
             median(outcomes.iter().map(|o| o.total_s).collect()),

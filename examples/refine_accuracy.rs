@@ -308,6 +308,15 @@ fn report(method: &str, outcomes: &[Outcome]) {
         },
         median(times),
     );
+    if method == "pipeline" {
+        // The record's statuses of the oriented fragments, and how many are wrong.
+        let oriented: Vec<&Outcome> = outcomes.iter().filter(|o| !o.flagged).collect();
+        let count = |uncertain: bool| {
+            let of: Vec<&&Outcome> = oriented.iter().filter(|o| o.axis_uncertain == uncertain).collect();
+            format!("{} ({} more than 4 mm off)", of.len(), of.iter().filter(|o| o.distance_mm > 4.0).count())
+        };
+        println!("|   pipeline, oriented: ok {}, axis_uncertain {} | | | | | | | | | | |", count(false), count(true));
+    }
     if std::env::var_os("REFINE_ACCURACY_DETAIL").is_some() {
         for part in [SherdPart::Rim, SherdPart::Body, SherdPart::Base, SherdPart::RimToBase, SherdPart::Flat] {
             let of_part: Vec<&Outcome> = outcomes.iter().filter(|o| o.part == part).collect();
