@@ -421,3 +421,19 @@ fn no_usable_axis_line_is_grossly_wrong_on_the_refinement_corpus() {
     assert!(usable >= 40, "only {usable} usable axis lines of 3 vessels");
     assert!(wrong.is_empty(), "usable axis lines more than 15 deg off: {wrong:#?}");
 }
+
+/// A base's foot is a level circle about the axis, like a rim. Two base pieces whose wall
+/// rises from a strip of underside too small to count as a floor (2-3% of the surface)
+/// were oriented upside down, their level foot read as a level rim; the strip now vetoes
+/// that reading (the sense is then uncertain), and no right base of the same kind is lost.
+#[test]
+fn a_level_foot_is_not_taken_for_a_rim() {
+    use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
+    for seed in [26u64, 70] {
+        let sherd = synthetic_sherd(seed, &SherdOptions { target_faces: 20_000, ..SherdOptions::for_part(SherdPart::Base) });
+        let orientation = orient_automatic(&sherd.mesh, &OrientOptions::default()).unwrap();
+        let sense = orientation.axis.direction.dot(&sherd.truth.axis.direction);
+        println!("base seed {seed}: {:?}, sense {sense:.3}, {}", orientation.verdict, orientation.report.direction_cue);
+        assert!(!(orientation.verdict.is_oriented() && sense < 0.0), "seed {seed} upside down: {}", orientation.report.direction_cue);
+    }
+}

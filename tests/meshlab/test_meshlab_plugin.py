@@ -46,12 +46,13 @@ def cli_record(scan):
 def rim_sherd(tmp_path_factory):
     folder = tmp_path_factory.mktemp("synth")
     # Seed 2's rim sherd (20000 faces) is oriented and keeps enough rim for a diameter
-    # (checked here and in the measure test).
+    # (checked here and in the measure test); its short rim leaves the position loose
+    # (diameter 252-290 mm), which the status may say (axis_uncertain): the axis is given.
     subprocess.run([str(SHERD_CLI), "synth", "-o", str(folder), "--seed", "2", "--part", "rim"],
                    check=True, capture_output=True)
     (scan,) = folder.glob("*.ply")
     record, error = cli_record(scan)
-    assert error is None and record["status"] == "ok", (error, record)
+    assert error is None and record["status"] in ("ok", "axis_uncertain"), (error, record)
     return scan, record
 
 
