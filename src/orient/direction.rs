@@ -42,7 +42,7 @@ pub struct DirectionEvidence {
 pub struct SenseCues {
     /// Floor cue: +-1 when a floor was found, else 0.
     pub floor: f64,
-    /// A floor too small to decide the sense alone (see [`MIN_FLOOR_SHARE`]), +-1, else
+    /// A floor too small to decide the sense alone (2-5% of the surface), +-1, else
     /// 0: it only vetoes a level edge that says the other way.
     #[serde(default)]
     pub small_floor: f64,
