@@ -342,6 +342,13 @@ struct Sample {
     weight: f64,
 }
 
+impl Sample {
+    /// On the wall: its normal mostly radial.
+    fn is_wall(&self) -> bool {
+        self.normal_radial.abs() > 0.5
+    }
+}
+
 /// Share of the surface a flat part must have to decide the sense as a floor.
 const MIN_FLOOR_SHARE: f64 = 0.05;
 /// Share of the surface a flat part needs to veto a level edge that says the other way.
@@ -354,25 +361,26 @@ const FLOOR_INNER_RADIUS_RATIO: f64 = 0.8;
 /// The same for a small floor, which only vetoes: the strip of underside beside a foot
 /// lies closer to the wall (that base: 0.82 of it on a 20k-face copy).
 const SMALL_FLOOR_INNER_RADIUS_RATIO: f64 = 0.9;
-/// Share of the surface the wall must have for a level end of the profile to be a rim: a
-/// piece of floor alone (no wall) has level ends, but no rim.
-const MIN_WALL_SHARE_FOR_RIM: f64 = 0.05;
+/// Share of the surface the wall must have for a floor to rise into it, and for a level end
+/// of the profile to be a rim: a piece of floor alone (no wall) has level ends, but no rim.
+const MIN_WALL_SHARE: f64 = 0.05;
 
-/// The share of the surface that is wall (normals mostly radial).
+/// The share of the surface that is wall.
 fn wall_share(samples: &[Sample]) -> f64 {
     let total: f64 = samples.iter().map(|s| s.weight).sum();
-    samples.iter().filter(|s| s.normal_radial.abs() > 0.5).map(|s| s.weight).sum::<f64>() / total
+    samples.iter().filter(|s| s.is_wall()).map(|s| s.weight).sum::<f64>() / total
 }
 
-/// The floor cue on the lines of the surface of revolution: `Some((sense, share))` when a
-/// flat surface of at least `min_share` of the piece reaches well inside the wall's radius.
+/// The floor cue on the lines of the surface of revolution: `Some(sense)` when a flat
+/// surface of at least `min_share` of the piece reaches inside `max_inner_radius_ratio`
+/// of the wall's radius.
 fn floor_cue(samples: &[Sample], min_share: f64, max_inner_radius_ratio: f64) -> Option<f64> {
     let total: f64 = samples.iter().map(|s| s.weight).sum();
-    let wall: Vec<&Sample> = samples.iter().filter(|s| s.normal_radial.abs() > 0.5).collect();
+    let wall: Vec<&Sample> = samples.iter().filter(|s| s.is_wall()).collect();
     let flat: Vec<&Sample> = samples.iter().filter(|s| s.normal_axial.abs() > 0.85).collect();
     let wall_weight: f64 = wall.iter().map(|s| s.weight).sum();
     let flat_weight: f64 = flat.iter().map(|s| s.weight).sum();
-    if !(flat_weight > min_share * total && wall_weight > 0.05 * total) {
+    if !(flat_weight > min_share * total && wall_weight > MIN_WALL_SHARE * total) {
         return None;
     }
     let wall_radius = weighted_median(wall.iter().map(|s| (s.radius, s.weight)));
@@ -389,7 +397,7 @@ fn floor_cue(samples: &[Sample], min_share: f64, max_inner_radius_ratio: f64) ->
 /// profile is normal to `(n_r, n_z)` on either skin (the inner skin's normal is the
 /// outer's reversed), so `dr/dz = -n_z / n_r` on both.
 fn wall_slope(samples: &[Sample]) -> Option<f64> {
-    let wall: Vec<&Sample> = samples.iter().filter(|s| s.normal_radial.abs() > 0.5).collect();
+    let wall: Vec<&Sample> = samples.iter().filter(|s| s.is_wall()).collect();
     let wall_weight: f64 = wall.iter().map(|s| s.weight).sum();
     if !(wall_weight > 0.0) {
         return None;
@@ -432,7 +440,7 @@ pub fn direction_evidence(lines: &NormalLines, on_surface: &[bool], all_points: 
     if cues.floor == 0.0 {
         cues.small_floor = floor_cue(&samples, MIN_SMALL_FLOOR_SHARE, SMALL_FLOOR_INNER_RADIUS_RATIO).unwrap_or(0.0);
     }
-    if wall_share(&samples) < MIN_WALL_SHARE_FOR_RIM {
+    if wall_share(&samples) < MIN_WALL_SHARE {
         cues.level_edge = 0.0;
         level_text.clear();
     }

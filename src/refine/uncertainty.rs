@@ -257,32 +257,40 @@ pub fn angle_interval_deg(estimate: &Axis, replicates: &[Axis], bootstrap: &Boot
     if replicates.len() < 5 {
         return None;
     }
-    let mut angles: Vec<f64> = replicates.iter().map(|a| a.line_angle_to_deg(estimate)).collect();
-    Some([0.0, (bootstrap.spread_factor * quantile(&mut angles, bootstrap.confidence)).hypot(bootstrap.angle_floor_deg)])
+    let angles: Vec<f64> = replicates.iter().map(|a| a.line_angle_to_deg(estimate)).collect();
+    Some([0.0, widened_deviation(angles, bootstrap.angle_floor_deg, bootstrap)])
 }
 
 /// The interval `[0, upper]` of the paper's mean point distance between the true and the
 /// estimated axis (each of the sherd's `points` placed by both axes, matched at best along
 /// and about them): the `confidence` quantile of the resampled axes' distances to the
-/// estimate, widened, combined with the floor. The angle interval misses an axis that turns little but moves: on a
-/// short arc the skins may hold the direction and let the position slide along the
-/// radius, and the 4 mm that make an axis wrong (the paper's test) are a position.
+/// estimate, widened, combined with the floor. The angle interval misses an axis that
+/// turns little but moves: on a short arc the skins may hold the direction and let the
+/// position slide along the radius, and the 4 mm that make an axis wrong (the paper's
+/// test) are a position.
 pub fn distance_interval_mm(estimate: &Axis, replicates: &[Axis], points: &[Point], bootstrap: &BootstrapOptions) -> Option<[f64; 2]> {
     if replicates.len() < 5 || points.is_empty() {
         return None;
     }
-    let mut distances: Vec<f64> = replicates.iter().map(|a| mean_point_distance_mm(points, a, estimate)).collect();
-    Some([0.0, (bootstrap.spread_factor * quantile(&mut distances, bootstrap.confidence)).hypot(bootstrap.distance_floor_mm)])
+    let distances: Vec<f64> = replicates.iter().map(|a| mean_point_distance_mm(points, a, estimate)).collect();
+    Some([0.0, widened_deviation(distances, bootstrap.distance_floor_mm, bootstrap)])
+}
+
+/// The `confidence` quantile of the resampled `deviations` from an estimate, widened by
+/// the spread factor and combined with `floor` (what no resample shows): the half-width
+/// of every interval here.
+fn widened_deviation(mut deviations: Vec<f64>, floor: f64, bootstrap: &BootstrapOptions) -> f64 {
+    (bootstrap.spread_factor * quantile(&mut deviations, bootstrap.confidence)).hypot(floor)
 }
 
 /// A symmetric interval about `estimate`: the `confidence` quantile of the resampled
 /// values' deviations from it, widened, and never narrower than `floor_half_width`.
 pub fn value_interval(estimate: f64, replicates: &[f64], floor_half_width: f64, bootstrap: &BootstrapOptions) -> Option<[f64; 2]> {
-    let mut deviations: Vec<f64> = replicates.iter().filter(|v| v.is_finite()).map(|v| (v - estimate).abs()).collect();
+    let deviations: Vec<f64> = replicates.iter().filter(|v| v.is_finite()).map(|v| (v - estimate).abs()).collect();
     if deviations.len() < 5 {
         return None;
     }
-    let half_width = (bootstrap.spread_factor * quantile(&mut deviations, bootstrap.confidence)).hypot(floor_half_width);
+    let half_width = widened_deviation(deviations, floor_half_width, bootstrap);
     Some([estimate - half_width, estimate + half_width])
 }
 

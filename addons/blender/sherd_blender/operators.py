@@ -281,9 +281,8 @@ class SHERD_OT_measure(SherdOperator, bpy.types.Operator):
             elif key in obj:
                 del obj[key]
         if measurements.axis_uncertain:
-            notes = [n for n in measurements.details.get("notes", []) if n.startswith("the axis is uncertain")]
-            self.notify({'WARNING'}, "measured; " + (notes[0] if notes else "the axis is uncertain") +
-                        ": check the axis before using these figures")
+            doubts = "; ".join(measurements.details.get("axis_doubts", []))
+            self.notify({'WARNING'}, f"measured; the axis is uncertain: {doubts}: check the axis before using these figures")
         else:
             self.notify({'INFO'}, "measured")
         return {'FINISHED'}
