@@ -122,7 +122,8 @@ pub struct RefineTimings {
 pub struct RefineReport {
     /// The criterion that ran (for `Auto`, the one it chose).
     pub method: Criterion,
-    /// Why `Auto` chose it, or the criterion asked for.
+    /// Why `Auto` chose it, or the criterion asked for; for the tangent plane, whether
+    /// the plane of a flat rim top or base underside gave the tilts.
     pub reason: String,
     /// The surface used.
     pub surface: Surface,
@@ -232,6 +233,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
     let mut pareto_front = None;
     let mut pareto_chosen = None;
     let mut flag = None;
+    let mut flat_face = None;
     let (parameters, start_cost, cost, iterations, kept_start) = match method {
         Criterion::Circles | Criterion::Auto => {
             let objective = circles::CirclesObjective::new(&surface);
@@ -269,11 +271,17 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                     )?,
                 };
                 // Never worse than the start by Eq. 7 itself.
-                if levelled.value <= tangent_start || !tangent_start.is_finite() {
+                let (mut tilted, cost, iterations, kept) = if levelled.value <= tangent_start || !tangent_start.is_finite() {
                     (levelled.parameters, levelled.value, levelled.iterations, false)
                 } else {
                     (start, tangent_start, levelled.iterations, true)
+                };
+                // A flat top or underside holds the tilts better than its sections' extremes.
+                if let Some(face) = tangent::flat_face(&surface, edge, &tilted) {
+                    tilted = [face.tilts[0], face.tilts[1], tilted[2], tilted[3]];
+                    flat_face = Some(face);
                 }
+                (tilted, cost, iterations, kept)
             };
             let placed = match options.tangent_places_by_circles {
                 false => None,
@@ -328,7 +336,18 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
     let centroid = surface.start_frame.inverse() * crate::mesh::Point::origin();
     let report = RefineReport {
         method,
-        reason,
+        reason: match flat_face {
+            Some(face) => format!(
+                "{reason}; tilted by the plane of its flat {} ({} vertices within {:.2} mm)",
+                match edge {
+                    Some(Edge::Base) => "underside",
+                    _ => "top",
+                },
+                face.vertex_count,
+                face.band_mm
+            ),
+            None => reason,
+        },
         surface: options.surface,
         parameters: options.clone(),
         edge,
