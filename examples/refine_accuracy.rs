@@ -23,14 +23,12 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use sherd::statistics::nearest_rank_quantile;
-use sherd::orient::accuracy::perturbed_axis;
+use sherd::orient::accuracy::{perturbed_axis, refinement_corpus};
 use sherd::orient::{mean_point_distance_mm, orient_automatic, Axis, OrientOptions};
 use sherd::profile::measure::{measure, MeasureOptions, Measurements};
 use sherd::refine::{refine, Criterion, RefineOptions};
-use sherd::synth::{generate_vessel, SherdPart, SynthSherd, VesselOptions};
+use sherd::synth::{SherdPart, SynthSherd};
 
-/// Fragments per vessel (the paper's synthetic vessel broke into 34).
-const FRAGMENTS_PER_VESSEL: usize = 34;
 /// Error of the simulated pre-orientation (`REFINE_ACCURACY_START_TILT_DEG` overrides the tilt).
 const START_TILT_DEG: f64 = 3.0;
 const START_SHIFT_MM: f64 = 2.0;
@@ -184,22 +182,11 @@ fn main() {
         .map(|a| a.split(',').map(str::to_string).collect())
         .unwrap_or_else(|| ["circles", "pareto", "profile", "tangent", "auto", "pipeline"].map(String::from).to_vec());
     let generated = Instant::now();
-    let sherds: Vec<(u64, SynthSherd)> = (0..vessels)
-        .flat_map(|seed| {
-            let vessel = generate_vessel(
-                seed,
-                &VesselOptions {
-                    fragment_count: FRAGMENTS_PER_VESSEL,
-                    random_motion: true,
-                    deformation_scale: env_number("REFINE_ACCURACY_DEFORMATION", 1.0),
-                    noise_mm: env_number("REFINE_ACCURACY_NOISE_MM", 0.02),
-                    ..Default::default()
-                },
-            );
-            vessel.fragments.into_iter().enumerate().map(move |(i, f)| (seed * 1000 + i as u64, f))
-        })
-        .filter(|(_, s)| s.truth.hard_case.is_none())
-        .collect();
+    let sherds = refinement_corpus(
+        vessels,
+        env_number("REFINE_ACCURACY_DEFORMATION", 1.0),
+        env_number("REFINE_ACCURACY_NOISE_MM", 0.02),
+    );
     eprintln!("{} fragments from {vessels} vessels in {:.1} s", sherds.len(), generated.elapsed().as_secs_f64());
     println!("| method | fragments | within 4 mm | within 4 mm (sector >= 10 deg) | median angle error (deg) | 90th pct angle (deg) | wrong (> 4 mm) not flagged | rim radius error median / 95th pct | diameter interval coverage | axis interval coverage (angle / distance) | median time (ms) |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|");

@@ -94,11 +94,20 @@ impl SplineProfile {
 
     /// Fits `r = f(z)` to `(r, z)` points with knots about `knot_spacing_mm` apart.
     pub fn fit(points: &[[f64; 2]], knot_spacing_mm: f64) -> Option<Self> {
-        if points.len() < 8 || !(knot_spacing_mm > 0.0) {
-            return None;
-        }
         let low = points.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min);
         let high = points.iter().map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max);
+        Self::fit_over(points, [low, high], knot_spacing_mm)
+    }
+
+    /// [`SplineProfile::fit`] with the knots spread over the heights `range_mm` rather than
+    /// over the points' own: knots that stay put while the points move (a least-squares
+    /// search over the axis) keep the fit's residuals smooth in the axis. Points outside
+    /// the range take the end spans' polynomials.
+    pub fn fit_over(points: &[[f64; 2]], range_mm: [f64; 2], knot_spacing_mm: f64) -> Option<Self> {
+        let [low, high] = range_mm;
+        if points.len() < 8 || !(knot_spacing_mm > 0.0) || !(high >= low) {
+            return None;
+        }
         let spans = (((high - low) / knot_spacing_mm).round() as usize).clamp(1, 40).min(points.len() / 8).max(1);
         let mut profile =
             SplineProfile { coefficients: vec![0.0; spans + 3], low_mm: low, spacing_mm: ((high - low) / spans as f64).max(1e-9), spans };
