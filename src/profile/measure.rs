@@ -287,15 +287,7 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
     let (edges, outer_skin): (Vec<Edge>, Vec<bool>) =
         match PreparedSurface::new(mesh, axis, Surface::Both, options.refine.section_count) {
             Ok(surface) => {
-                let skins: Vec<crate::orient::Skin> = surface
-                    .skins
-                    .iter()
-                    .map(|skin| match skin {
-                        Some(Skin::Inner) => crate::orient::Skin::Inner,
-                        Some(Skin::Outer) => crate::orient::Skin::Outer,
-                        None => crate::orient::Skin::Other,
-                    })
-                    .collect();
+                let skins: Vec<Skin> = surface.skins.iter().map(|skin| skin.unwrap_or(Skin::Other)).collect();
                 measurements.rills = trace_rills(mesh, axis, &skins, &RillOptions::default());
                 (
                     detect_edges_over(&surface, &options.refine, [MIN_MEASURED_RIM_FRACTION, EDGE_LEVEL_FRACTION]).into_iter().map(|e| e.edge).collect(),

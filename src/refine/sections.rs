@@ -41,19 +41,18 @@ pub enum Surface {
     Both,
 }
 
-/// The skin one vertex belongs to.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub enum Skin {
-    /// Normal pointing towards the axis.
-    Inner,
-    /// Normal pointing away from the axis.
-    Outer,
-}
+/// The skin one vertex belongs to: the orientation's segmentation names it. Here a vertex
+/// off the skins is `None` rather than `Some(Skin::Other)`, which the refinement never
+/// assigns.
+pub use crate::orient::Skin;
 
 impl Surface {
     /// Whether `skin` is used under this choice.
     pub fn includes(self, skin: Skin) -> bool {
-        matches!((self, skin), (Surface::Both, _) | (Surface::Inner, Skin::Inner) | (Surface::Outer, Skin::Outer))
+        matches!(
+            (self, skin),
+            (Surface::Both, Skin::Inner | Skin::Outer) | (Surface::Inner, Skin::Inner) | (Surface::Outer, Skin::Outer)
+        )
     }
 }
 
