@@ -15,6 +15,9 @@
 //! least-squares minimum; what it loses against the given profiles is the price of not
 //! knowing them.
 //!
+//! `DEFORMATION_FLOOR_NORMALS=1` fits the normal lines instead (Eq. 1: each skin vertex's
+//! normal line should meet the axis), from the true axis too.
+//!
 //! Run: `cargo run --release --example deformation_floor [VESSELS]`; the environment
 //! variables `REFINE_ACCURACY_DEFORMATION` and `REFINE_ACCURACY_NOISE_MM` scale the
 //! corpus as for `refine_accuracy`. Prints, per part and for all, the share within 4 mm
@@ -80,6 +83,8 @@ fn nearest_segment(curve: &[[f64; 2]], q: [f64; 2]) -> usize {
 /// A fragment's skin vertices in the vessel frame with the profile each belongs on.
 struct KnownProfileFit<'a> {
     points: Vec<Vector3<f64>>,
+    /// Unit vertex normals (vessel frame), for the normal-line fit.
+    normals: Vec<Vector3<f64>>,
     on_outer: Vec<bool>,
     outer: &'a [[f64; 2]],
     inner: &'a [[f64; 2]],
@@ -89,6 +94,8 @@ struct KnownProfileFit<'a> {
     unknown_profile_knots_mm: Option<f64>,
     /// Height range of the fitted splines' knots (fixed, so that the cost is smooth).
     knot_range_mm: [f64; 2],
+    /// Fit the normal lines instead of the profiles.
+    normal_lines: bool,
 }
 
 impl KnownProfileFit<'_> {
@@ -102,6 +109,9 @@ impl KnownProfileFit<'_> {
 
     /// Each vertex's distance to its profile in the frame of `parameters`.
     fn residuals(&self, parameters: &[f64], hints: &mut [usize]) -> DVector<f64> {
+        if self.normal_lines {
+            return self.normal_line_residuals(parameters);
+        }
         if let Some(spacing) = self.unknown_profile_knots_mm {
             return self.spline_residuals(parameters, spacing);
         }
@@ -117,6 +127,16 @@ impl KnownProfileFit<'_> {
             })
             .collect();
         DVector::from_vec(values)
+    }
+
+    /// Each vertex's normal line's distance to the axis (Eq. 1) in the frame of `parameters`.
+    fn normal_line_residuals(&self, parameters: &[f64]) -> DVector<f64> {
+        let rotation = Rotation3::from_euler_angles(parameters[0], parameters[1], 0.0);
+        let values = self.moved(parameters).zip(&self.normals).map(|(p, n)| {
+            let across = (rotation * n).cross(&Vector3::z());
+            p.dot(&across) / across.norm().max(1e-9)
+        });
+        DVector::from_iterator(self.points.len(), values)
     }
 
     /// Residuals across the least-squares spline profile of each skin (the profile
@@ -206,14 +226,25 @@ impl KnownProfileFit<'_> {
 /// The axis fitted to the true profiles, in the scan frame, or `None` without skins.
 fn fitted_axis(sherd: &SynthSherd) -> Option<Axis> {
     let to_vessel = sherd.truth.motion.isometry().inverse();
-    let (mut points, mut on_outer) = (Vec::new(), Vec::new());
-    for (p, kind) in sherd.mesh.positions.iter().zip(&sherd.vertex_kinds) {
+    let normal_lines = std::env::var_os("DEFORMATION_FLOOR_NORMALS").is_some();
+    let (mut points, mut normals, mut on_outer) = (Vec::new(), Vec::new(), Vec::new());
+    let mesh_normals = sherd.mesh.normals.as_ref()?;
+    for ((p, kind), n) in sherd.mesh.positions.iter().zip(&sherd.vertex_kinds).zip(mesh_normals) {
         let outer = match kind {
             SurfaceKind::Outer => true,
             SurfaceKind::Inner => false,
             _ => continue,
         };
-        points.push((to_vessel * p).coords);
+        let (point, normal) = ((to_vessel * p).coords, (to_vessel.rotation * n).normalize());
+        // For the normal lines, the truth drops the vertices on a break's border (their
+        // normals average the skin's and the break's: more than 5 degrees off the meridian
+        // plane) and those whose normal line runs along the axis (a floor, a lip's top).
+        let off_meridian = (point.x * normal.y - point.y * normal.x).abs() > 0.09 * point.x.hypot(point.y);
+        if normal_lines && (off_meridian || normal.z.abs() > 0.95) {
+            continue;
+        }
+        points.push(point);
+        normals.push(normal);
         on_outer.push(outer);
     }
     if points.len() < 10 || sherd.truth.profile.len() < 2 || sherd.truth.inner_profile.len() < 2 {
@@ -224,12 +255,14 @@ fn fitted_axis(sherd: &SynthSherd) -> Option<Axis> {
     let high = points.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max) + 2.0;
     let fit = KnownProfileFit {
         points,
+        normals,
         on_outer,
         outer: &sherd.truth.profile,
         inner: &sherd.truth.inner_profile,
         centroid,
         unknown_profile_knots_mm: std::env::var("DEFORMATION_FLOOR_KNOTS_MM").ok().and_then(|v| v.parse().ok()),
         knot_range_mm: [low, high],
+        normal_lines,
     };
     let (point, direction) = fit.axis_of(&fit.fit());
     let to_scan = sherd.truth.motion.isometry();
