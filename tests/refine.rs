@@ -319,25 +319,24 @@ fn the_profile_criterion_recovers_perfect_solids_of_the_synthetic_corpus() {
     }
 }
 
-/// The tangent plane takes its tilts from the plane of a flat rim top or base underside
-/// where the fragment has one: Eq. 7's one extreme per vertical section fixes the tilt
-/// about a short rim's chord only through the arc's sagitta, and the scan's noise reaches
-/// each extreme whole. Fragments of the refinement corpus (deformed vessels, 0.02 mm
-/// noise) levelled from 3 degrees off by Eq. 7 alone ended 1.2-2.3 degrees off (three rims
-/// of vessel 0) and 1.0 (a base of vessel 8); their faces' planes bring them within 0.3
-/// degrees, the vessels' own rim tilt being up to 0.3.
+/// On a base the tangent plane takes its tilts from the plane of the flat underside, where
+/// the fragment has one: Eq. 7's one lowest vertex per vertical section fixes the tilt
+/// about a short arc's chord only through the arc's sagitta, and the scan's noise reaches
+/// each extreme whole. Bases of the refinement corpus (deformed vessels, 0.02 mm noise)
+/// levelled from 3 degrees off by Eq. 7 alone ended 0.16-1.04 degrees off; their
+/// undersides' planes bring them within 0.1.
 #[test]
-fn a_flat_rim_top_or_underside_gives_the_tangent_plane_its_tilts() {
+fn a_flat_underside_gives_the_tangent_plane_its_tilts() {
     use sherd::synth::{generate_vessel, VesselOptions};
     let options = VesselOptions { fragment_count: 34, random_motion: true, ..Default::default() };
-    for (vessel_seed, fragment, face) in [(0u64, 4usize, "top"), (0, 8, "top"), (0, 26, "top"), (6, 22, "underside"), (8, 31, "underside")] {
+    for (vessel_seed, fragment) in [(6u64, 22usize), (8, 31), (3, 28), (3, 18)] {
         let sherd = &generate_vessel(vessel_seed, &options).fragments[fragment];
         let truth = sherd.truth.axis;
         let start = sherd::orient::accuracy::perturbed_axis(&truth, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
         let refined = refine(&sherd.mesh, &start, &RefineOptions::default()).unwrap();
         let angle = refined.axis.line_angle_to_deg(&truth);
         println!("vessel {vessel_seed} fragment {fragment}: {angle:.3} deg, {}", refined.report.reason);
-        assert!(refined.report.reason.contains(&format!("plane of its flat {face}")), "{}", refined.report.reason);
-        assert!(angle < 0.5, "vessel {vessel_seed} fragment {fragment}: {angle:.2} deg");
+        assert!(refined.report.reason.contains("plane of its flat underside"), "{}", refined.report.reason);
+        assert!(angle < 0.1, "vessel {vessel_seed} fragment {fragment}: {angle:.2} deg");
     }
 }

@@ -122,8 +122,8 @@ pub struct RefineTimings {
 pub struct RefineReport {
     /// The criterion that ran (for `Auto`, the one it chose).
     pub method: Criterion,
-    /// Why `Auto` chose it, or the criterion asked for; for the tangent plane, whether
-    /// the plane of a flat rim top or base underside gave the tilts.
+    /// Why `Auto` chose it, or the criterion asked for; for the tangent plane on a base,
+    /// whether the plane of its flat underside gave the tilts.
     pub reason: String,
     /// The surface used.
     pub surface: Surface,
@@ -233,7 +233,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
     let mut pareto_front = None;
     let mut pareto_chosen = None;
     let mut flag = None;
-    let mut flat_face = None;
+    let mut flat_underside = None;
     let (parameters, start_cost, cost, iterations, kept_start) = match method {
         Criterion::Circles | Criterion::Auto => {
             let objective = circles::CirclesObjective::new(&surface);
@@ -276,10 +276,10 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                 } else {
                     (start, tangent_start, levelled.iterations, true)
                 };
-                // A flat top or underside holds the tilts better than its sections' extremes.
-                if let Some(face) = tangent::flat_face(&surface, edge, &tilted) {
-                    tilted = [face.tilts[0], face.tilts[1], tilted[2], tilted[3]];
-                    flat_face = Some(face);
+                // A flat underside holds the tilts better than its sections' extremes.
+                if let Some(underside) = (edge == Edge::Base).then(|| tangent::flat_underside(&surface, &tilted)).flatten() {
+                    tilted = [underside.tilts[0], underside.tilts[1], tilted[2], tilted[3]];
+                    flat_underside = Some(underside);
                 }
                 (tilted, cost, iterations, kept)
             };
@@ -336,15 +336,10 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
     let centroid = surface.start_frame.inverse() * crate::mesh::Point::origin();
     let report = RefineReport {
         method,
-        reason: match flat_face {
-            Some(face) => format!(
-                "{reason}; tilted by the plane of its flat {} ({} vertices within {:.2} mm)",
-                match edge {
-                    Some(Edge::Base) => "underside",
-                    _ => "top",
-                },
-                face.vertex_count,
-                face.band_mm
+        reason: match flat_underside {
+            Some(underside) => format!(
+                "{reason}; tilted by the plane of its flat underside ({} vertices within {:.2} mm)",
+                underside.vertex_count, underside.band_mm
             ),
             None => reason,
         },
