@@ -26,7 +26,7 @@
 
 use nalgebra::{DMatrix, DVector, Rotation3, Vector3};
 use rayon::prelude::*;
-use sherd::mesh::Point;
+use sherd::mesh::{segment_distance, Point};
 use sherd::orient::accuracy::refinement_corpus;
 use sherd::orient::{mean_point_distance_mm, Axis};
 use sherd::refine::profile::SplineProfile;
@@ -43,13 +43,7 @@ fn env_number(name: &str, default: f64) -> f64 {
 /// the distance falls (the fitted frames move points by a fraction of a millimetre, so
 /// the nearest segment is next to the last one). Returns the distance and the segment.
 fn distance_to_curve(curve: &[[f64; 2]], q: [f64; 2], hint: usize) -> (f64, usize) {
-    let segment = |i: usize| {
-        let (a, b) = (curve[i], curve[i + 1]);
-        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-        let length2 = dx * dx + dy * dy;
-        let t = if length2 > 0.0 { (((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / length2).clamp(0.0, 1.0) } else { 0.0 };
-        (q[0] - a[0] - t * dx).hypot(q[1] - a[1] - t * dy)
-    };
+    let segment = |i: usize| segment_distance(q, curve[i], curve[i + 1]);
     let last = curve.len() - 2;
     let mut best = (segment(hint.min(last)), hint.min(last));
     for step in [-1isize, 1] {
@@ -75,7 +69,7 @@ fn distance_to_curve(curve: &[[f64; 2]], q: [f64; 2], hint: usize) -> (f64, usiz
 /// The nearest segment of `curve` to `q` over the whole curve.
 fn nearest_segment(curve: &[[f64; 2]], q: [f64; 2]) -> usize {
     (0..curve.len() - 1)
-        .map(|i| (distance_to_curve(&curve[i..i + 2], q, 0).0, i))
+        .map(|i| (segment_distance(q, curve[i], curve[i + 1]), i))
         .min_by(|a, b| a.0.total_cmp(&b.0))
         .map_or(0, |(_, i)| i)
 }

@@ -9,7 +9,7 @@ use rayon::prelude::*;
 
 use crate::mesh::raster::{barycentric, rasterize_parallel, OrthographicCamera, ZBuffer, NO_FACE};
 use crate::mesh::topology::Topology;
-use crate::mesh::{Mesh, Point, Vector};
+use crate::mesh::{segment_distance, Mesh, Point, Vector};
 use crate::profile::regularity::ColorMap;
 
 /// Per-vertex data the shading reads, all in the oriented frame.
@@ -351,12 +351,6 @@ fn distance2(a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)
 }
 
-fn segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let length2 = dx * dx + dy * dy;
-    let t = if length2 > 0.0 { (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / length2).clamp(0.0, 1.0) } else { 0.0 };
-    distance2(p, [a[0] + t * dx, a[1] + t * dy]).sqrt()
-}
 
 /// The crease edges of `mesh` (dihedral angle above `angle_deg`: rim, fracture edges,
 /// sharp decoration) as vertex pairs. Found once per drawing: both views test the same

@@ -31,6 +31,15 @@ pub fn planar_length(dx: f64, dy: f64) -> f64 {
     (dx * dx + dy * dy).sqrt()
 }
 
+/// Distance from `p` to the segment from `a` to `b` in a plane (a point when `a == b`).
+#[inline]
+pub fn segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let length2 = dx * dx + dy * dy;
+    let t = if length2 > 0.0 { (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / length2).clamp(0.0, 1.0) } else { 0.0 };
+    planar_length(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy)
+}
+
 /// An RGBA8 texture image, rows top to bottom, as scanners and photogrammetry export it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Texture {

@@ -214,25 +214,31 @@ impl TangentObjective {
         // near one chord about that chord.
         let mut near: Vec<f64> = points.iter().map(|p| p.z).filter(|z| (z - extreme).abs() < self.tolerance_mm).collect();
         let level_height = crate::statistics::quantile(&mut near, 0.5);
-        let mut normal = nalgebra::Matrix3::<f64>::zeros();
-        let mut right = nalgebra::Vector3::<f64>::zeros();
-        let mut sections = 0;
-        for (index, p) in points.iter().enumerate() {
-            let weight = weights.map_or(1.0, |w| w[index]);
-            if weight <= 0.0 || (p.z - level_height).abs() > PLANE_BAND_MM {
-                continue;
-            }
-            sections += 1;
-            let row = nalgebra::Vector3::new(1.0, p.x, p.y);
-            normal += weight * row * row.transpose();
-            right += weight * row * p.z;
-        }
-        if sections < 3 {
+        let level: Vec<([f64; 3], f64)> = points
+            .iter()
+            .enumerate()
+            .map(|(index, p)| ([p.x, p.y, p.z], weights.map_or(1.0, |w| w[index])))
+            .filter(|(p, weight)| !(*weight <= 0.0 || (p[2] - level_height).abs() > PLANE_BAND_MM))
+            .collect();
+        if level.len() < 3 {
             return None;
         }
-        let solution = normal.cholesky()?.solve(&right);
+        let solution = least_squares_plane(level)?;
         solution.iter().all(|v| v.is_finite()).then(|| tilts_of_plane(solution[1], solution[2]))
     }
+}
+
+/// The weighted least-squares plane `z = c + a x + b y` through `points` (`[x, y, z]` and
+/// a weight each), as `[c, a, b]`; `None` when they do not fix one (they lie on a line).
+fn least_squares_plane(points: impl IntoIterator<Item = ([f64; 3], f64)>) -> Option<nalgebra::Vector3<f64>> {
+    let mut normal = nalgebra::Matrix3::<f64>::zeros();
+    let mut right = nalgebra::Vector3::<f64>::zeros();
+    for ([x, y, z], weight) in points {
+        let row = nalgebra::Vector3::new(1.0, x, y);
+        normal += weight * row * row.transpose();
+        right += weight * row * z;
+    }
+    Some(normal.cholesky()?.solve(&right))
 }
 
 /// A vertex belongs to the underside when its normal is within about 25 degrees of the
@@ -309,21 +315,15 @@ pub fn flat_underside(surface: &PreparedSurface, parameters: &AxisParameters) ->
         }
         let count = chosen.len() as f64;
         let mean = chosen.iter().fold(nalgebra::Vector3::zeros(), |sum, p| sum + p.coords) / count;
-        let mut spread = nalgebra::Matrix2::<f64>::zeros();
-        let mut normal = nalgebra::Matrix3::<f64>::zeros();
-        let mut right = nalgebra::Vector3::<f64>::zeros();
-        for p in &chosen {
-            let d = p.coords - mean;
+        let centred: Vec<nalgebra::Vector3<f64>> = chosen.iter().map(|p| p.coords - mean).collect();
+        let spread = centred.iter().fold(nalgebra::Matrix2::<f64>::zeros(), |sum, d| {
             let across = nalgebra::Vector2::new(d.x, d.y);
-            spread += across * across.transpose();
-            let row = nalgebra::Vector3::new(1.0, d.x, d.y);
-            normal += row * row.transpose();
-            right += row * d.z;
-        }
+            sum + across * across.transpose()
+        });
         if (spread / count).symmetric_eigenvalues().min() < FACE_MIN_SPREAD_MM * FACE_MIN_SPREAD_MM {
             break;
         }
-        let Some(plane) = normal.cholesky().map(|c| c.solve(&right)) else { break };
+        let Some(plane) = least_squares_plane(centred.iter().map(|d| ([d.x, d.y, d.z], 1.0))) else { break };
         offsets = candidates
             .iter()
             .map(|(p, _)| {

@@ -237,18 +237,5 @@ pub fn sector_angle_deg(points: &[Point], axis: &Axis) -> f64 {
 
 /// Distance (mm) from `point` (`[r, z]`) to a polyline in the rz-plane.
 pub fn distance_to_polyline(point: [f64; 2], polyline: &[[f64; 2]]) -> f64 {
-    polyline
-        .windows(2)
-        .map(|w| {
-            let (a, b) = (w[0], w[1]);
-            let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
-            let length_squared = dx * dx + dz * dz;
-            let t = if length_squared > 0.0 {
-                (((point[0] - a[0]) * dx + (point[1] - a[1]) * dz) / length_squared).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            (point[0] - a[0] - t * dx).hypot(point[1] - a[1] - t * dz)
-        })
-        .fold(f64::INFINITY, f64::min)
+    polyline.windows(2).map(|w| crate::mesh::segment_distance(point, w[0], w[1])).fold(f64::INFINITY, f64::min)
 }
