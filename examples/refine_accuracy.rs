@@ -15,7 +15,8 @@
 //! `REFINE_ACCURACY_NOISE_MM=N` the scan noise (default 0.02 mm),
 //! `REFINE_ACCURACY_START_TILT_DEG=D` the start's tilt (default 3 degrees),
 //! `REFINE_ACCURACY_DUMP=1` prints a line per fragment on stderr (for the pipeline: the
-//! pre-orientation's and the refined axis's errors).
+//! pre-orientation's and the refined axis's errors), and a `FAILED` line with the error
+//! for each fragment a criterion could not refine.
 
 use std::time::Instant;
 
@@ -123,7 +124,12 @@ fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
                 }
                 (r.axis, r.report.flagged, format!("{:?}", r.report.method))
             }
-            Err(_) => (start, true, "refine failed".into()),
+            Err(error) => {
+                if std::env::var_os("REFINE_ACCURACY_DUMP").is_some() {
+                    eprintln!("FAILED {seed} {:?} {method} sector {:.0}: {error}", truth.part, truth.sector_angle_deg);
+                }
+                (start, true, "refine failed".into())
+            }
         }
     };
     let millis = started.elapsed().as_secs_f64() * 1e3;
