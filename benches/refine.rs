@@ -4,7 +4,7 @@
 //! off.
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
-use sherd::orient::accuracy::perturbed_axis;
+use sherd::refine::accuracy::perturbed_axis;
 use sherd::orient::{orient_automatic, OrientOptions};
 use sherd::refine::{refine, Criterion, RefineOptions};
 use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};

@@ -27,7 +27,7 @@
 use nalgebra::{DMatrix, DVector, Rotation3, Vector3};
 use rayon::prelude::*;
 use sherd::mesh::{segment_distance, Point};
-use sherd::orient::accuracy::refinement_corpus;
+use sherd::refine::accuracy::refinement_corpus;
 use sherd::orient::{mean_point_distance_mm, Axis};
 use sherd::refine::profile::SplineProfile;
 use sherd::statistics::nearest_rank_quantile;

@@ -24,7 +24,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use sherd::statistics::nearest_rank_quantile;
-use sherd::orient::accuracy::{perturbed_axis, refinement_corpus};
+use sherd::refine::accuracy::{perturbed_axis, refinement_corpus};
 use sherd::orient::{mean_point_distance_mm, orient_automatic, Axis, OrientOptions};
 use sherd::profile::measure::{measure, MeasureOptions, Measurements};
 use sherd::refine::{refine, Criterion, RefineOptions};

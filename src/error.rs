@@ -21,7 +21,7 @@ pub enum Error {
     /// A file's content is malformed. `location` says where (element, line or byte).
     #[error("{file}: {location}: {message}")]
     Parse {
-        /// The file (or "<memory>" for buffers) being read.
+        /// The file (or `"<memory>"` for buffers) being read.
         file: String,
         /// Where in the file: "line 12", "byte 4096 (vertex 17)", "header".
         location: String,

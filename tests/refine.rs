@@ -310,7 +310,7 @@ fn the_profile_criterion_recovers_perfect_solids_of_the_synthetic_corpus() {
         let sherd = &generate_vessel(vessel_seed, &options).fragments[fragment];
         let truth = sherd.truth.axis;
         // The true axis turned by 3 degrees about a horizontal line and shifted by 2 mm.
-        let start = sherd::orient::accuracy::perturbed_axis(&truth, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
+        let start = sherd::refine::accuracy::perturbed_axis(&truth, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
         let refined = refine(&sherd.mesh, &start, &RefineOptions { criterion: Criterion::Profile, ..Default::default() }).unwrap();
         let angle = refined.axis.line_angle_to_deg(&truth);
         let distance = mean_point_distance_mm(&sherd.mesh.positions, &refined.axis, &truth);
@@ -332,7 +332,7 @@ fn a_flat_underside_gives_the_tangent_plane_its_tilts() {
     for (vessel_seed, fragment) in [(6u64, 22usize), (8, 31), (3, 28), (3, 18)] {
         let sherd = &generate_vessel(vessel_seed, &options).fragments[fragment];
         let truth = sherd.truth.axis;
-        let start = sherd::orient::accuracy::perturbed_axis(&truth, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
+        let start = sherd::refine::accuracy::perturbed_axis(&truth, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
         let refined = refine(&sherd.mesh, &start, &RefineOptions::default()).unwrap();
         let angle = refined.axis.line_angle_to_deg(&truth);
         println!("vessel {vessel_seed} fragment {fragment}: {angle:.3} deg, {}", refined.report.reason);

@@ -40,6 +40,9 @@ if [ -f cbindgen.toml ]; then
   cbindgen --quiet --config cbindgen.toml --crate sherd --verify --output include/sherd.h
 fi
 
+step "API documentation builds without warnings (broken or private links in doc comments)"
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -q
+
 step "Rust tests"
 # Includes the hostile-file corpus (tests/io_malformed.rs), the replay of the fuzz
 # targets' corpora and found inputs (tests/fuzz_regressions.rs; the long fuzz runs are in

@@ -18,7 +18,7 @@
 //!
 //! The k-d tree is implicit: points are reordered so that every subrange `[lo, hi)` holds
 //! its median at `lo + (hi - lo) / 2`, with the split axis stored beside it; subranges of
-//! at most [`KD_LEAF_SIZE`] points are scanned linearly. The BVH is built with a binned
+//! at most 8 points (`KD_LEAF_SIZE`) are scanned linearly. The BVH is built with a binned
 //! surface area heuristic and stored depth-first: a node's left child follows it, the
 //! right child's offset is stored in the node; leaves refer to a run of triangles stored
 //! in leaf order.

@@ -11,6 +11,7 @@
 //! ([`Criterion::Auto`]), and never returns an axis its own criterion rates worse than
 //! the start.
 
+pub mod accuracy;
 pub mod circle_fit;
 pub mod circles;
 pub mod normal_line_placement;
@@ -532,7 +533,7 @@ pub(crate) fn choose_criterion(surface: &PreparedSurface, options: &RefineOption
 ///
 /// A rim or base is recognised after levelling it: the tangent criterion tilts the axis
 /// to make the extremes of the vertical sections level, and the edge counts when
-/// [`EDGE_LEVEL_FRACTION`] of them then lie within [`EDGE_LEVEL_TOLERANCE_MM`] of their
+/// [`EDGE_LEVEL_FRACTION`] of them then lie within 1 mm (`EDGE_LEVEL_TOLERANCE_MM`) of their
 /// median. Tested at the start axis, a rim 3 degrees off on a 70 mm chord rises by 3.5 mm
 /// and would be missed.
 pub fn detect_edges(surface: &PreparedSurface, options: &RefineOptions) -> Vec<tangent::EdgeEvidence> {
@@ -605,7 +606,7 @@ fn detect_edges_levelled(
 const MIN_PLACING_SECTIONS: usize = 6;
 
 /// A rim or base is level when this share of vertical sections has its extreme within
-/// [`EDGE_LEVEL_TOLERANCE_MM`] of the median extreme.
+/// 1 mm (`EDGE_LEVEL_TOLERANCE_MM`) of the median extreme.
 pub const EDGE_LEVEL_FRACTION: f64 = 0.6;
 /// ...and their median absolute deviation is at most this, mm. On the synthetic corpus
 /// levelled rims and bases spread by 0.01-0.02 mm, levelled break lines by 0.1 mm or more.

@@ -199,7 +199,7 @@ fn tilts_of_plane(a: f64, b: f64) -> [f64; 2] {
 }
 
 impl TangentObjective {
-    /// The least-squares plane through the level extremes (within [`PLANE_BAND_MM`] of the
+    /// The least-squares plane through the level extremes (within 0.5 mm, `PLANE_BAND_MM`, of the
     /// median of those within the tolerance of the top) under the axis `parameters`, each section weighted by `weights` (all 1 when
     /// `None`), as the tilts of the axis perpendicular to it. `None` when fewer than
     /// three sections with weight carry level extremes, or when they are collinear.
@@ -287,7 +287,7 @@ pub struct FlatUnderside {
 /// the rim's tangent plane is the one through its highest points, Eq. 7's.
 ///
 /// `None` when the underside has too few vertices, they lie along a line, or they are not
-/// flat ([`FACE_MAX_BAND_MM`]: a curved or footed underside).
+/// flat (0.15 mm, `FACE_MAX_BAND_MM`: a curved or footed underside).
 pub fn flat_underside(surface: &PreparedSurface, parameters: &AxisParameters) -> Option<FlatUnderside> {
     let frame = CandidateFrame::new(parameters);
     // Heights and normals turned upside down: the lowest point is the highest.

@@ -8,7 +8,7 @@
 //! For the tangent plane a resample turns the estimate by the change of the
 //! least-squares plane through the level rim (base) extremes of its sections, instead
 //! of searching Eq. 7 again (see [`super::tangent::TangentObjective::plane_tilts`]), and
-//! is placed by Newton steps on Eq. 2 in the two shifts (see [`newton_placement`]).
+//! is placed by Newton steps on Eq. 2 in the two shifts (`newton_placement`).
 //!
 //! Neighbouring sections share the vessel's deformation, so resampling them as if they
 //! were independent underestimates the spread; [`BootstrapOptions::spread_factor`]

@@ -347,7 +347,7 @@ impl VesselProfile {
         polyline
     }
 
-    /// Arc length (mid-wall) where the outer skin rises [`BASE_EDGE_RISE_MM`] above the
+    /// Arc length (mid-wall) where the outer skin rises 1 mm (`BASE_EDGE_RISE_MM`) above the
     /// standing plane: the end of the base.
     pub fn base_edge_s_mm(&self) -> f64 {
         self.base_edge_s_mm
