@@ -305,8 +305,9 @@ def test_synthetic_sherd(vendored, operators):
         expect_cancelled(operators, lambda: bpy.ops.sherd.draw(filepath=os.path.join(folder, "x.gif")), "sherd")
 
     check_reconstruction_and_regularity(obj, vendored, operators)
-    texts = panel_texts(operators.__name__.rsplit(".", 1)[0])
-    for expected in ("Rim diameter", "95% interval", "Sector", "Height", "Residual", "Blue: inside", "Red: outside"):
+    texts = [text.strip() for text in panel_texts(operators.__name__.rsplit(".", 1)[0])]
+    for expected in ("Rim diameter", "95%", "Sector", "Preserved", "Height", "Wall", "Axis within", "Residual",
+                     "Blue: inside", "Red: outside"):
         assert expected in texts, (expected, texts)
 
     assert bpy.ops.sherd.apply_orientation() == {'FINISHED'}
@@ -339,6 +340,34 @@ def test_synthetic_sherd(vendored, operators):
     bpy.ops.object.mode_set(mode='EDIT')
     expect_cancelled(operators, bpy.ops.sherd.orient_three_points, "2 selected")
     bpy.ops.object.mode_set(mode='OBJECT')
+
+
+def test_base_sherd(vendored, operators):
+    """A base piece measured under its true axis: the panel shows the base diameter with
+    its interval, the sector's share of the circumference, the wall and how far the axis
+    may be off, as sherd.measure gives them."""
+    clear_scene()
+    mesh, truth, facts = vendored.synthetic_sherd(4, "base", target_faces=12000)
+    assert facts["base_radius_mm"], facts
+    start = Matrix.Translation((-20.0, 8.0, 3.0)) @ Matrix.Rotation(math.radians(25.0), 4, (0.2, 1.0, 0.1))
+    obj = add_mesh_object("base", mesh.positions, mesh.triangles, start)
+    matrix = np.array(start, dtype=np.float64)
+    point = matrix[:3, :3] @ np.array(truth.point) + matrix[:3, 3]
+    operators.store_axis(obj, vendored.Axis(point, world_axis_direction(start, np.array(truth.direction))), "truth")
+    assert bpy.ops.sherd.measure() == {'FINISHED'}, operators.REPORTS[-1:]
+    _, checked = stored_measurements_match(obj, vendored, operators)
+    diameter = obj["sherd_base_diameter_mm"]
+    low, high = obj["sherd_base_diameter_interval_mm"]
+    print(f"  base diameter {diameter:.1f} mm ({low:.1f}-{high:.1f}), true {2 * facts['base_radius_mm']:.1f}; {checked} figures")
+    assert abs(diameter - 2 * facts["base_radius_mm"]) < 0.05 * 2 * facts["base_radius_mm"]
+    assert low <= diameter <= high
+    assert "sherd_rim_diameter_mm" not in obj
+    for key in ("sherd_sector_percent", "sherd_wall_thickness_mm", "sherd_axis_angle_interval_deg", "sherd_axis_distance_interval_mm"):
+        assert key in obj, key
+    texts = [text.strip() for text in panel_texts(operators.__name__.rsplit(".", 1)[0])]
+    for label in ("Base diameter", "95%", "Preserved", "Wall", "Axis within"):
+        assert label in texts, f"the panel does not show {label!r}: {texts}"
+    assert "Rim diameter" not in texts
 
 
 def test_bad_input(vendored, operators):
@@ -396,7 +425,7 @@ def test_real_scan(vendored, operators):
 def main():
     vendored, operators = install_addon()
     failed = []
-    for test in (test_bad_input, test_synthetic_sherd, test_real_scan):
+    for test in (test_bad_input, test_synthetic_sherd, test_base_sherd, test_real_scan):
         print(f"{test.__name__}")
         try:
             test(vendored, operators)

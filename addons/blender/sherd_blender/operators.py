@@ -18,9 +18,15 @@ AXIS_SOURCE = "sherd_axis_source"
 MEASUREMENT_KEYS = {
     "rim_diameter_mm": "sherd_rim_diameter_mm",
     "rim_diameter_interval_mm": "sherd_rim_diameter_interval_mm",
+    "base_diameter_mm": "sherd_base_diameter_mm",
+    "base_diameter_interval_mm": "sherd_base_diameter_interval_mm",
     "sector_angle_deg": "sherd_sector_angle_deg",
+    "sector_percent": "sherd_sector_percent",
     "height_mm": "sherd_height_mm",
+    "wall_thickness_mm": "sherd_wall_thickness_mm",
     "capacity_litres": "sherd_capacity_litres",
+    "axis_angle_interval_deg": "sherd_axis_angle_interval_deg",
+    "axis_distance_interval_mm": "sherd_axis_distance_interval_mm",
 }
 
 CRITERION_ITEMS = [
@@ -259,8 +265,9 @@ def _is_number(value):
 
 
 class SHERD_OT_measure(SherdOperator, bpy.types.Operator):
-    """Measure the oriented sherd: rim diameter with interval, sector angle, height,
-    capacity (stored as custom properties)"""
+    """Measure the oriented sherd: rim and base diameters with their intervals, sector
+    angle and share of the circumference, height, wall thickness, capacity, and how far
+    the axis may be off (stored as custom properties)"""
 
     bl_idname = "sherd.measure"
     bl_label = "Measure"

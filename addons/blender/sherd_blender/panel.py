@@ -25,8 +25,9 @@ class SherdSettings(bpy.types.PropertyGroup):
 PARETO_ROWS = 6
 
 
-def _row(layout, label, value, unit):
-    row = layout.row()
+def _row(layout, label, value, unit, label_share=0.5):
+    # The sidebar is narrow: rows whose values are long (intervals) give their labels less.
+    row = layout.split(factor=label_share)
     row.label(text=label)
     row.label(text=f"{value} {unit}".strip())
 
@@ -85,16 +86,26 @@ class SHERD_PT_panel(bpy.types.Panel):
         if operators.AXIS_SOURCE in obj:
             box.label(text=f"Axis: {obj[operators.AXIS_SOURCE]}")
         keys = operators.MEASUREMENT_KEYS
-        if keys["rim_diameter_mm"] in obj:
-            _row(box, "Rim diameter", f"{obj[keys['rim_diameter_mm']]:.1f}", "mm")
-            low, high = obj.get(keys["rim_diameter_interval_mm"], (math.nan, math.nan))
-            _row(box, "95% interval", f"{low:.1f}–{high:.1f}", "mm")
+        for edge in ("rim", "base"):
+            if keys[f"{edge}_diameter_mm"] in obj:
+                _row(box, f"{edge.capitalize()} diameter", f"{obj[keys[f'{edge}_diameter_mm']]:.1f}", "mm")
+                low, high = obj.get(keys[f"{edge}_diameter_interval_mm"], (math.nan, math.nan))
+                _row(box, "   95%", f"{low:.1f}–{high:.1f}", "mm", label_share=0.3)
         if keys["sector_angle_deg"] in obj:
             _row(box, "Sector", f"{obj[keys['sector_angle_deg']]:.1f}", "deg")
+        if keys["sector_percent"] in obj:
+            _row(box, "Preserved", f"{obj[keys['sector_percent']]:.1f}", "%")
         if keys["height_mm"] in obj:
             _row(box, "Height", f"{obj[keys['height_mm']]:.1f}", "mm")
+        if keys["wall_thickness_mm"] in obj:
+            _row(box, "Wall", f"{obj[keys['wall_thickness_mm']]:.1f}", "mm")
         if keys["capacity_litres"] in obj:
             _row(box, "Capacity", f"{obj[keys['capacity_litres']]:.3f}", "l")
+        # The upper ends of the 95% intervals of the axis's error (the lower ends are 0).
+        if keys["axis_angle_interval_deg"] in obj and keys["axis_distance_interval_mm"] in obj:
+            angle = obj[keys["axis_angle_interval_deg"]][1]
+            distance = obj[keys["axis_distance_interval_mm"]][1]
+            _row(box, "Axis within", f"{angle:.1f}° / {distance:.1f}", "mm", label_share=0.42)
 
         box = layout.box()
         box.label(text="Drawing")
