@@ -19,7 +19,7 @@
 //! normal line should meet the axis), from the true axis too.
 //!
 //! Run: `cargo run --release --example deformation_floor [VESSELS]`; the environment
-//! variables `REFINE_ACCURACY_DEFORMATION` and `REFINE_ACCURACY_NOISE_MM` scale the
+//! variables `REFINE_ACCURACY_DEFORMATION`, `REFINE_ACCURACY_NOISE_MM` and `REFINE_ACCURACY_CELL_MM` set the
 //! corpus as for `refine_accuracy`. Prints, per part and for all, the share within 4 mm
 //! mean point distance, the share within 0.3 degrees (the median goal needs half),
 //! the median and 90th percentile angle error.
@@ -269,6 +269,7 @@ fn main() {
         vessels,
         env_number("REFINE_ACCURACY_DEFORMATION", 1.0),
         env_number("REFINE_ACCURACY_NOISE_MM", 0.02),
+        env_number("REFINE_ACCURACY_CELL_MM", 2.0),
     );
     let outcomes: Vec<(String, f64, f64)> = sherds
         .par_iter()

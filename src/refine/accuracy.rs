@@ -22,14 +22,16 @@ pub const REFINEMENT_CORPUS_FRAGMENTS_PER_VESSEL: usize = 34;
 
 /// The refinement corpus of `examples/refine_accuracy.rs` and `examples/deformation_floor.rs`:
 /// vessels `0..vessels`, each broken into 34 fragments moved by random rigid motions, with
-/// the deformation scaled by `deformation_scale` (1: the default vessels) and scan noise
-/// `noise_mm`, the hard cases left out; each fragment with its id `vessel * 1000 + index`.
-pub fn refinement_corpus(vessels: u64, deformation_scale: f64, noise_mm: f64) -> Vec<(u64, SynthSherd)> {
+/// the deformation scaled by `deformation_scale` (1: the default vessels), scan noise
+/// `noise_mm` and mesh cells of `cell_size_mm` (2 mm by default, as the orientation's
+/// corpus), the hard cases left out; each fragment with its id `vessel * 1000 + index`.
+pub fn refinement_corpus(vessels: u64, deformation_scale: f64, noise_mm: f64, cell_size_mm: f64) -> Vec<(u64, SynthSherd)> {
     let options = crate::synth::VesselOptions {
         fragment_count: REFINEMENT_CORPUS_FRAGMENTS_PER_VESSEL,
         random_motion: true,
         deformation_scale,
         noise_mm,
+        cell_size_mm,
         ..Default::default()
     };
     (0..vessels)
