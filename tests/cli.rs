@@ -204,6 +204,30 @@ fn a_flat_base_piece_is_reported_as_needing_manual_orientation_with_exit_code_ze
     assert!(json["rim_radius_mm"].is_null());
 }
 
+/// `--pareto-plot` writes the Pareto criterion's front as an SVG plot (one point per
+/// non-dominated solution, the chosen one circled), and is refused, with nothing written,
+/// without `--refine pareto`.
+#[test]
+fn orient_plots_the_pareto_front_when_asked() {
+    let dir = tempfile::tempdir().unwrap();
+    let scans = synth(dir.path(), &["--seed", "13", "--part", "rim", "--faces", "30000"]);
+    let plot = dir.path().join("front.svg");
+    let json = orient_json(&scans[0], &["--refine", "pareto", "--pareto-plot", plot.to_str().unwrap()]);
+    assert_eq!(json["method"], "automatic + pareto", "{json:#}");
+    let svg = fs::read_to_string(&plot).expect("the plot is written");
+    usvg::Tree::from_str(&svg, &usvg::Options::default()).expect("usvg parses the plot");
+    let points = svg.matches("fill=\"#3060c0\"").count();
+    assert!(points >= 2, "{points} points on the front");
+    assert_eq!(svg.matches("<title>chosen:").count(), 1, "one chosen solution");
+    assert!(svg.contains("centre dispersion, Eq. 3") && svg.contains("circle residual, Eq. 4"));
+
+    let refused = dir.path().join("refused.svg");
+    let output = sherd().arg("orient").arg(&scans[0]).arg("--pareto-plot").arg(&refused).output().unwrap();
+    assert!(!output.status.success());
+    assert!(String::from_utf8_lossy(&output.stderr).contains("--refine pareto"), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(!refused.exists(), "nothing written when refused");
+}
+
 #[test]
 fn errors_name_the_file_and_exit_non_zero() {
     let dir = tempfile::tempdir().unwrap();

@@ -277,44 +277,105 @@ fn spread(front: &[ParetoPoint], samples: &[ParetoPoint], count: usize) -> Vec<P
     picks
 }
 
+/// One axis of [`front_svg`]: logarithmic when the values are positive and span more than
+/// a decade (a front often runs over several, and a linear axis then crushes all but one
+/// point against the origin), else linear; `at` maps a value to `[0, 1]`.
+struct PlotAxis {
+    low: f64,
+    high: f64,
+    logarithmic: bool,
+}
+
+impl PlotAxis {
+    fn over(values: impl Iterator<Item = f64> + Clone) -> PlotAxis {
+        let low = values.clone().fold(f64::INFINITY, f64::min);
+        let high = values.fold(f64::NEG_INFINITY, f64::max);
+        if !(low.is_finite() && high.is_finite()) {
+            return PlotAxis { low: 0.0, high: 1.0, logarithmic: false };
+        }
+        let logarithmic = low > 0.0 && high / low > 10.0;
+        let high = if high > low { high } else { low + low.abs().max(1e-12) * 1e-6 };
+        PlotAxis { low, high, logarithmic }
+    }
+
+    fn at(&self, value: f64) -> f64 {
+        if self.logarithmic {
+            (value / self.low).log10() / (self.high / self.low).log10()
+        } else {
+            (value - self.low) / (self.high - self.low)
+        }
+    }
+
+    /// Values to label: the decades within the range on a logarithmic axis (at most
+    /// seven, else every other), and the ends of a linear one and its middle.
+    fn ticks(&self) -> Vec<f64> {
+        if !self.logarithmic {
+            return vec![self.low, (self.low + self.high) / 2.0, self.high];
+        }
+        let decades: Vec<f64> = (self.low.log10().ceil() as i32..=self.high.log10().floor() as i32).map(|e| 10f64.powi(e)).collect();
+        match decades.len() {
+            0 | 1 => vec![self.low, self.high],
+            n if n > 7 => decades.into_iter().step_by(2).collect(),
+            _ => decades,
+        }
+    }
+
+    fn title(&self, name: &str) -> String {
+        if self.logarithmic { format!("{name} (mm², log scale)") } else { format!("{name} (mm²)") }
+    }
+}
+
 /// The front as an SVG scatter plot: centre dispersion (Eq. 3) across, circle residual
-/// (Eq. 4) up, the chosen solution in red.
+/// (Eq. 4) up, each on a logarithmic axis where the front spans more than a decade, the
+/// chosen solution circled in red; each point's tooltip gives its tilts.
 pub fn front_svg(front: &[ParetoPoint], chosen: Option<&ParetoPoint>) -> String {
-    let (width, height, margin) = (480.0, 360.0, 60.0);
+    let (width, height) = (520.0, 380.0);
+    let (left, right, top, bottom) = (78.0, 20.0, 20.0, 58.0);
+    let all: Vec<&ParetoPoint> = front.iter().chain(chosen).collect();
+    let across = PlotAxis::over(all.iter().map(|p| p.centre_dispersion_mm2));
+    let up = PlotAxis::over(all.iter().map(|p| p.circle_residual_mm2));
+    // A margin inside the axes, so that points at the ends are not cut by them.
+    let inset = 0.04;
+    let to_x = |v: f64| left + (inset + (1.0 - 2.0 * inset) * across.at(v)) * (width - left - right);
+    let to_y = |v: f64| height - bottom - (inset + (1.0 - 2.0 * inset) * up.at(v)) * (height - top - bottom);
+    let text = "font-family=\"sans-serif\" font-size=\"11\"";
     let mut svg = format!(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" viewBox=\"0 0 {width} {height}\">\n\
-         <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+         <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n\
+         <line x1=\"{left}\" y1=\"{0}\" x2=\"{1}\" y2=\"{0}\" stroke=\"black\"/>\n\
+         <line x1=\"{left}\" y1=\"{0}\" x2=\"{left}\" y2=\"{top}\" stroke=\"black\"/>\n",
+        height - bottom,
+        width - right
     );
-    let all: Vec<&ParetoPoint> = front.iter().chain(chosen).collect();
-    let range = |f: fn(&ParetoPoint) -> f64| {
-        let low = all.iter().map(|p| f(p)).fold(f64::INFINITY, f64::min);
-        let high = all.iter().map(|p| f(p)).fold(f64::NEG_INFINITY, f64::max);
-        if !low.is_finite() { (0.0, 1.0) } else { (low, (high - low).max(low.abs() * 1e-6).max(1e-12)) }
-    };
-    let (x_low, x_span) = range(|p| p.centre_dispersion_mm2);
-    let (y_low, y_span) = range(|p| p.circle_residual_mm2);
-    let to_x = |v: f64| margin + (v - x_low) / x_span * (width - 1.5 * margin);
-    let to_y = |v: f64| height - margin - (v - y_low) / y_span * (height - 1.5 * margin);
+    for value in across.ticks() {
+        let x = to_x(value);
+        svg += &format!(
+            "<line x1=\"{x:.2}\" y1=\"{0}\" x2=\"{x:.2}\" y2=\"{1}\" stroke=\"black\"/>\n<text x=\"{x:.2}\" y=\"{2}\" {text} text-anchor=\"middle\">{value:.2e}</text>\n",
+            height - bottom,
+            height - bottom + 4.0,
+            height - bottom + 16.0
+        );
+    }
+    for value in up.ticks() {
+        let y = to_y(value);
+        svg += &format!(
+            "<line x1=\"{0}\" y1=\"{y:.2}\" x2=\"{left}\" y2=\"{y:.2}\" stroke=\"black\"/>\n<text x=\"{1}\" y=\"{2:.2}\" {text} text-anchor=\"end\">{value:.2e}</text>\n",
+            left - 4.0,
+            left - 6.0,
+            y + 4.0
+        );
+    }
     svg += &format!(
-        "<line x1=\"{margin}\" y1=\"{0}\" x2=\"{1}\" y2=\"{0}\" stroke=\"black\"/>\n\
-         <line x1=\"{margin}\" y1=\"{0}\" x2=\"{margin}\" y2=\"{2}\" stroke=\"black\"/>\n",
-        height - margin,
-        width - margin / 2.0,
-        margin / 2.0
+        "<text x=\"{0}\" y=\"{1}\" {text} text-anchor=\"middle\">{2}</text>\n",
+        left + (width - left - right) / 2.0,
+        height - 12.0,
+        across.title("centre dispersion, Eq. 3")
     );
     svg += &format!(
-        "<text x=\"{}\" y=\"{}\" font-family=\"sans-serif\" font-size=\"12\" text-anchor=\"middle\">centre dispersion, Eq. 3 (mm²): {:.3e} to {:.3e}</text>\n",
-        width / 2.0,
-        height - margin / 3.0,
-        x_low,
-        x_low + x_span
-    );
-    svg += &format!(
-        "<text x=\"{0}\" y=\"{1}\" font-family=\"sans-serif\" font-size=\"12\" text-anchor=\"middle\" transform=\"rotate(-90 {0} {1})\">circle residual, Eq. 4 (mm²): {2:.3e} to {3:.3e}</text>\n",
-        margin / 3.0,
-        height / 2.0,
-        y_low,
-        y_low + y_span
+        "<text x=\"{0}\" y=\"{1}\" {text} text-anchor=\"middle\" transform=\"rotate(-90 {0} {1})\">{2}</text>\n",
+        14.0,
+        top + (height - top - bottom) / 2.0,
+        up.title("circle residual, Eq. 4")
     );
     for p in front {
         svg += &format!(

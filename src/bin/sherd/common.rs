@@ -30,7 +30,7 @@ impl Units {
 }
 
 /// The refinement criterion, or none.
-#[derive(Clone, Copy, Debug, ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum RefineChoice {
     /// Tangent plane where a level rim or base is kept, circles otherwise.
     Auto,

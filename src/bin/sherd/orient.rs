@@ -1,14 +1,17 @@
-//! `sherd orient SCAN [--manual ...] [--refine ...] [--surface ...] [--json]`: the axis,
-//! the rim radius, the sector and how far to trust them.
+//! `sherd orient SCAN [--manual ...] [--refine ...] [--surface ...] [--json]
+//! [--pareto-plot FRONT.svg]`: the axis, the rim radius, the sector and how far to trust
+//! them.
 
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Args;
 
-use sherd::pipeline::{self, STATUS_ERROR};
+use sherd::mesh::atomic::write_bytes_atomically;
+use sherd::pipeline::{self, SherdRecord, STATUS_ERROR};
+use sherd::refine::pareto::front_svg;
 
-use crate::common::AnalysisArgs;
+use crate::common::{AnalysisArgs, RefineChoice};
 
 #[derive(Args, Debug)]
 #[command(
@@ -33,13 +36,34 @@ pub struct OrientArgs {
     /// Print one JSON object on stdout instead of text.
     #[arg(long)]
     pub json: bool,
+    /// With `--refine pareto`: write the Pareto front (centre dispersion, Eq. 3, against
+    /// circle residual, Eq. 4; the chosen solution circled in red) as an SVG plot.
+    #[arg(long, value_name = "FRONT.svg")]
+    pub pareto_plot: Option<PathBuf>,
 }
 
 pub fn run(args: OrientArgs) -> Result<ExitCode, String> {
     let options = args.analysis.pipeline_options()?;
-    let record = pipeline::process_file(&args.scan, &options, None);
+    if args.pareto_plot.is_some() && args.analysis.refine != RefineChoice::Pareto {
+        return Err("--pareto-plot draws the Pareto criterion's front: add --refine pareto".into());
+    }
+    let file = args.scan.display().to_string();
+    let analysis = pipeline::analyse_file(&args.scan, &options);
+    let record = match &analysis {
+        Ok(analysis) => SherdRecord::from_analysis(file, analysis),
+        Err(error) => SherdRecord::failed(file, error),
+    };
     if record.status == STATUS_ERROR {
         return Err(record.error.unwrap_or_default());
+    }
+    if let (Some(path), Ok(analysis)) = (&args.pareto_plot, &analysis) {
+        let refinement = analysis.refinement.as_ref();
+        let front = refinement.and_then(|r| r.pareto_front.as_deref()).unwrap_or_default();
+        if front.is_empty() {
+            return Err(format!("{}: no Pareto front to plot: {}", args.scan.display(), record.reason.as_deref().unwrap_or("the refinement did not run")));
+        }
+        let svg = front_svg(front, refinement.and_then(|r| r.pareto_chosen.as_ref()));
+        write_bytes_atomically(path, svg.as_bytes()).map_err(|e| format!("{}: {e}", path.display()))?;
     }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&record).map_err(|e| e.to_string())?);
