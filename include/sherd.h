@@ -251,6 +251,69 @@ typedef uint32_t SherdSurface;
 #endif // __cplusplus
 
 /**
+ * Which solution of the Pareto front becomes the axis (`sherd_refine_options_set_pareto_choice`).
+ */
+enum SherdParetoChoice
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * The knee: the smallest product of the two costs (the default).
+   */
+  SHERD_PARETO_CHOICE_KNEE = 0,
+  /**
+   * The best centre dispersion (Eq. 3 alone).
+   */
+  SHERD_PARETO_CHOICE_CENTRES = 1,
+  /**
+   * The best circle residual (Eq. 4 alone).
+   */
+  SHERD_PARETO_CHOICE_RESIDUALS = 2,
+  /**
+   * The mean of the tilts of the `count` best solutions by their scaled costs (the
+   * original tool takes 2).
+   */
+  SHERD_PARETO_CHOICE_MEAN_OF_BEST = 3,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdParetoChoice SherdParetoChoice;
+#else
+typedef uint32_t SherdParetoChoice;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * The edge the tangent plane (Eq. 7) rests on (`sherd_refine_options_set_edge`).
+ */
+enum SherdEdge
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * The one whose extremes are level (the default).
+   */
+  SHERD_EDGE_DETECT = 0,
+  /**
+   * The rim: the highest point per vertical section.
+   */
+  SHERD_EDGE_RIM = 1,
+  /**
+   * The base: the lowest point per vertical section.
+   */
+  SHERD_EDGE_BASE = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdEdge SherdEdge;
+#else
+typedef uint32_t SherdEdge;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
  * Output formats of `sherd_drawing_to_buffer`.
  */
 enum SherdFormat
@@ -1322,14 +1385,58 @@ SherdStatus sherd_refine_options_set_section_count(SherdRefineOptions *options,
                                                    size_t section_count);
 
 /**
- * Largest tilt from the start axis the search considers, degrees (finite, positive,
- * below 90).
+ * Largest tilt from the start axis the search considers, degrees (finite, positive, at
+ * most 45; the paper's 10 by default).
  *
  * # Safety
  * `options` must be a live handle.
  */
 SherdStatus sherd_refine_options_set_search_bound_deg(SherdRefineOptions *options,
                                                       double bound_deg);
+
+/**
+ * Which solution of the Pareto front becomes the axis: a `SHERD_PARETO_CHOICE_*` value;
+ * `count` is the number of best solutions averaged by `SHERD_PARETO_CHOICE_MEAN_OF_BEST`
+ * (at least 1) and is ignored by the others.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_pareto_choice(SherdRefineOptions *options,
+                                                   uint32_t choice,
+                                                   size_t count);
+
+/**
+ * The Pareto criterion's limits per horizontal section (Eq. 3-4): sections with fewer
+ * than `min_points` points (at least 3) or an arc under `min_sector_deg` degrees (finite,
+ * 0 to 360) are left out. The defaults are 10 points and 3 degrees.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_pareto_section_limits(SherdRefineOptions *options,
+                                                           size_t min_points,
+                                                           double min_sector_deg);
+
+/**
+ * The tangent plane's tolerance epsilon (Eq. 7), mm (finite, positive; 3 by default): a
+ * vertical section whose extreme lies farther than this below the rim's highest point
+ * (above the base's lowest) is taken for damaged and left out.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_tangent_tolerance_mm(SherdRefineOptions *options,
+                                                          double tolerance_mm);
+
+/**
+ * The edge the tangent plane rests on: a `SHERD_EDGE_*` value (`SHERD_EDGE_DETECT`, the
+ * default, takes the one whose extremes are level).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_edge(SherdRefineOptions *options, uint32_t edge);
 
 /**
  * Creates measurement options with the library's defaults (intervals from a bootstrap

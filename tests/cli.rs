@@ -228,6 +228,37 @@ fn orient_plots_the_pareto_front_when_asked() {
     assert!(!refused.exists(), "nothing written when refused");
 }
 
+/// The refinement's parameters of the paper reach the command: which Pareto solution
+/// becomes the axis, the tangent plane's epsilon and edge; bad values are refused with
+/// the value named.
+#[test]
+fn orient_takes_the_pareto_choice_and_the_tangent_planes_options() {
+    let dir = tempfile::tempdir().unwrap();
+    let scans = synth(dir.path(), &["--seed", "13", "--part", "rim", "--faces", "30000"]);
+    let direction = |extra: &[&str]| vector(&orient_json(&scans[0], extra)["axis"]["direction"]);
+    let centres = direction(&["--refine", "pareto", "--pareto-choice", "centres"]);
+    let residuals = direction(&["--refine", "pareto", "--pareto-choice", "residuals"]);
+    assert!(angle_deg(centres, residuals) > 1e-6, "the two ends of the front gave one axis");
+    let mean = direction(&["--refine", "pareto", "--pareto-choice", "mean-of-best:2"]);
+    let truth = vector(&truth_of(&scans[0])["axis"]["direction"]);
+    assert!(angle_deg(mean, truth) < 5.0);
+    let json = orient_json(&scans[0], &["--refine", "tangent", "--edge", "rim", "--tangent-tolerance", "1"]);
+    assert_eq!(json["method"], "automatic + tangent", "{json:#}");
+    assert!(angle_deg(vector(&json["axis"]["direction"]), truth) < 3.0, "{json:#}");
+
+    for (flag, value, named) in [
+        ("--pareto-choice", "mean-of-best:0", "mean-of-best:0"),
+        ("--pareto-choice", "median", "median"),
+        ("--tangent-tolerance", "-1", "-1"),
+        ("--edge", "lip", "lip"),
+    ] {
+        let output = sherd().arg("orient").arg(&scans[0]).args([flag, value]).output().unwrap();
+        assert!(!output.status.success(), "{flag} {value} was accepted");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert!(stderr.contains(named), "{flag} {value}: {stderr}");
+    }
+}
+
 #[test]
 fn errors_name_the_file_and_exit_non_zero() {
     let dir = tempfile::tempdir().unwrap();

@@ -7,7 +7,7 @@ use super::error::{Failure, FfiResult};
 use super::panic::guard;
 use super::pointers::{borrow, borrow_mut, require, write_out};
 use super::status::SherdStatus;
-use super::refine::{SherdCriterion, SherdSurface};
+use super::refine::{SherdCriterion, SherdEdge, SherdParetoChoice, SherdSurface};
 use crate::draw::{DrawOptions, Placement, RegularityKind, SectionFill, Style};
 use crate::mesh::repair::RepairOptions;
 use crate::orient::{ManualOptions, OrientOptions};
@@ -348,8 +348,8 @@ pub unsafe extern "C" fn sherd_refine_options_set_section_count(options: *mut Sh
     })
 }
 
-/// Largest tilt from the start axis the search considers, degrees (finite, positive,
-/// below 90).
+/// Largest tilt from the start axis the search considers, degrees (finite, positive, at
+/// most 45; the paper's 10 by default).
 ///
 /// # Safety
 /// `options` must be a live handle.
@@ -357,10 +357,70 @@ pub unsafe extern "C" fn sherd_refine_options_set_section_count(options: *mut Sh
 pub unsafe extern "C" fn sherd_refine_options_set_search_bound_deg(options: *mut SherdRefineOptions, bound_deg: f64) -> SherdStatus {
     assign("sherd_refine_options_set_search_bound_deg", options, |o| &mut o.search_bound_deg, || {
         match finite_positive(bound_deg, "bound_deg")? {
-            bound if bound < 90.0 => Ok(bound),
-            bound => Err(Failure::invalid(format!("`bound_deg` must be below 90, got {bound}"))),
+            bound if bound <= 45.0 => Ok(bound),
+            bound => Err(Failure::invalid(format!("`bound_deg` must be at most 45, got {bound}"))),
         }
     })
+}
+
+/// Which solution of the Pareto front becomes the axis: a `SHERD_PARETO_CHOICE_*` value;
+/// `count` is the number of best solutions averaged by `SHERD_PARETO_CHOICE_MEAN_OF_BEST`
+/// (at least 1) and is ignored by the others.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_pareto_choice(options: *mut SherdRefineOptions, choice: u32, count: usize) -> SherdStatus {
+    assign("sherd_refine_options_set_pareto_choice", options, |o| &mut o.pareto.choice, || SherdParetoChoice::parse(choice, count))
+}
+
+/// The Pareto criterion's limits per horizontal section (Eq. 3-4): sections with fewer
+/// than `min_points` points (at least 3) or an arc under `min_sector_deg` degrees (finite,
+/// 0 to 360) are left out. The defaults are 10 points and 3 degrees.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_pareto_section_limits(
+    options: *mut SherdRefineOptions,
+    min_points: usize,
+    min_sector_deg: f64,
+) -> SherdStatus {
+    set("sherd_refine_options_set_pareto_section_limits", options, |builder| {
+        if min_points < 3 {
+            return Err(Failure::invalid(format!("`min_points` must be at least 3 (a circle needs three), got {min_points}")));
+        }
+        if !(min_sector_deg.is_finite() && (0.0..=360.0).contains(&min_sector_deg)) {
+            return Err(Failure::invalid(format!("`min_sector_deg` must be in [0, 360], got {min_sector_deg}")));
+        }
+        let pareto = &mut builder.options_mut().pareto;
+        pareto.min_section_points = min_points;
+        pareto.min_sector_angle_deg = min_sector_deg;
+        Ok(())
+    })
+}
+
+/// The tangent plane's tolerance epsilon (Eq. 7), mm (finite, positive; 3 by default): a
+/// vertical section whose extreme lies farther than this below the rim's highest point
+/// (above the base's lowest) is taken for damaged and left out.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_tangent_tolerance_mm(options: *mut SherdRefineOptions, tolerance_mm: f64) -> SherdStatus {
+    assign("sherd_refine_options_set_tangent_tolerance_mm", options, |o| &mut o.tangent_tolerance_mm, || {
+        finite_positive(tolerance_mm, "tolerance_mm")
+    })
+}
+
+/// The edge the tangent plane rests on: a `SHERD_EDGE_*` value (`SHERD_EDGE_DETECT`, the
+/// default, takes the one whose extremes are level).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_edge(options: *mut SherdRefineOptions, edge: u32) -> SherdStatus {
+    assign("sherd_refine_options_set_edge", options, |o| &mut o.edge, || SherdEdge::parse(edge))
 }
 
 // ---------------------------------------------------------------- measurements

@@ -10,6 +10,8 @@ use super::orient::{SherdAxis, read_axis};
 use super::panic::guard;
 use super::pointers::{SizedStruct, borrow, host_slice_mut, require, write_out, write_sized};
 use super::status::SherdStatus;
+use crate::refine::pareto::ParetoChoice;
+use crate::refine::tangent::Edge;
 use crate::refine::{Criterion, Refinement, Surface};
 
 /// The refinement criteria (`SherdRefineOptions`' criterion, and the one a report says
@@ -50,6 +52,59 @@ impl SherdCriterion {
             Criterion::Tangent => SherdCriterion::Tangent,
             Criterion::Auto => SherdCriterion::Auto,
         }
+    }
+}
+
+/// Which solution of the Pareto front becomes the axis (`sherd_refine_options_set_pareto_choice`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SherdParetoChoice {
+    /// The knee: the smallest product of the two costs (the default).
+    Knee = 0,
+    /// The best centre dispersion (Eq. 3 alone).
+    Centres = 1,
+    /// The best circle residual (Eq. 4 alone).
+    Residuals = 2,
+    /// The mean of the tilts of the `count` best solutions by their scaled costs (the
+    /// original tool takes 2).
+    MeanOfBest = 3,
+}
+
+impl SherdParetoChoice {
+    /// The choice for a value and count from the host.
+    pub(crate) fn parse(value: u32, count: usize) -> FfiResult<ParetoChoice> {
+        Ok(match value {
+            0 => ParetoChoice::Knee,
+            1 => ParetoChoice::Centres,
+            2 => ParetoChoice::Residuals,
+            3 if count >= 1 => ParetoChoice::MeanOfBest(count),
+            3 => return Err(Failure::invalid("`count` must be at least 1 for SHERD_PARETO_CHOICE_MEAN_OF_BEST")),
+            other => return Err(Failure::invalid(format!("`choice` {other} is not a SHERD_PARETO_CHOICE_* value (0 to 3)"))),
+        })
+    }
+}
+
+/// The edge the tangent plane (Eq. 7) rests on (`sherd_refine_options_set_edge`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SherdEdge {
+    /// The one whose extremes are level (the default).
+    Detect = 0,
+    /// The rim: the highest point per vertical section.
+    Rim = 1,
+    /// The base: the lowest point per vertical section.
+    Base = 2,
+}
+
+impl SherdEdge {
+    /// The edge for a value from the host (`None`: detect it).
+    pub(crate) fn parse(value: u32) -> FfiResult<Option<Edge>> {
+        Ok(match value {
+            0 => None,
+            1 => Some(Edge::Rim),
+            2 => Some(Edge::Base),
+            other => return Err(Failure::invalid(format!("`edge` {other} is not a SHERD_EDGE_* value (0 to 2)"))),
+        })
     }
 }
 

@@ -180,6 +180,10 @@ static SherdRefineOptions *random_refine_options(void) {
         CALL(sherd_refine_options_set_section_count(options, sections));
     }
     if (chance(50)) CALL(sherd_refine_options_set_search_bound_deg(options, random_double()));
+    if (chance(30)) CALL(sherd_refine_options_set_pareto_choice(options, random_enum(), (size_t)below(4)));
+    if (chance(30)) CALL(sherd_refine_options_set_pareto_section_limits(options, (size_t)below(20), random_double()));
+    if (chance(30)) CALL(sherd_refine_options_set_tangent_tolerance_mm(options, random_double()));
+    if (chance(30)) CALL(sherd_refine_options_set_edge(options, random_enum()));
     return options;
 }
 

@@ -329,7 +329,26 @@ static void test_refine_measure_draw_misuse(void) {
     CHECK_STATUS(sherd_refine_options_set_criterion(refine_options, 0xffffffffu), SHERD_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(sherd_refine_options_set_surface(refine_options, 3u), SHERD_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(sherd_refine_options_set_search_bound_deg(refine_options, 90.0), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_refine_options_set_search_bound_deg(refine_options, 46.0), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("at most 45");
+    CHECK_OK(sherd_refine_options_set_search_bound_deg(refine_options, 45.0));
     CHECK_STATUS(sherd_refine_options_set_search_bound_deg(refine_options, NAN), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_refine_options_set_pareto_choice(refine_options, 4u, 2), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("SHERD_PARETO_CHOICE_");
+    CHECK_STATUS(sherd_refine_options_set_pareto_choice(refine_options, SHERD_PARETO_CHOICE_MEAN_OF_BEST, 0),
+                 SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("`count` must be at least 1");
+    CHECK_OK(sherd_refine_options_set_pareto_choice(refine_options, SHERD_PARETO_CHOICE_MEAN_OF_BEST, 2));
+    CHECK_STATUS(sherd_refine_options_set_pareto_section_limits(refine_options, 2, 3.0), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("`min_points` must be at least 3");
+    CHECK_STATUS(sherd_refine_options_set_pareto_section_limits(refine_options, 10, NAN), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_refine_options_set_pareto_section_limits(refine_options, 10, 361.0), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_refine_options_set_tangent_tolerance_mm(refine_options, 0.0), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("`tolerance_mm` must be finite and positive");
+    CHECK_STATUS(sherd_refine_options_set_tangent_tolerance_mm(refine_options, INFINITY), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_refine_options_set_edge(refine_options, 3u), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("SHERD_EDGE_");
+    NULL_ARGUMENT(sherd_refine_options_set_edge(NULL, SHERD_EDGE_RIM), "options");
     NULL_ARGUMENT(sherd_refine_options_set_criterion(NULL, 0), "options");
     NULL_ARGUMENT(sherd_refine_options_new(NULL), "out_options");
 

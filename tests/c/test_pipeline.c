@@ -129,6 +129,51 @@ static void draw(const SherdMesh *mesh, const SherdAxis *axis) {
     sherd_drawing_free(drawing);
 }
 
+/* The Pareto criterion's choice of solution and the tangent plane's options reach the
+ * library: the best centre dispersion and the best circle residual are the two ends of one
+ * front (different axes), the mean of the single best is a third; the tangent plane on the
+ * rim with a tighter epsilon still levels it. */
+static SherdAxis refine_with(SherdMesh *mesh, const SherdAxis *start, uint32_t criterion, uint32_t choice,
+                             size_t count, uint32_t edge, double tolerance_mm, SherdRefineReport *summary) {
+    SherdRefineOptions *options = NULL;
+    SherdRefinement *refinement = NULL;
+    SherdAxis refined = new_axis();
+
+    memset(summary, 0, sizeof *summary);
+    summary->size = sizeof *summary;
+    CHECK_OK(sherd_refine_options_new(&options));
+    CHECK_OK(sherd_refine_options_set_criterion(options, criterion));
+    CHECK_OK(sherd_refine_options_set_pareto_choice(options, choice, count));
+    CHECK_OK(sherd_refine_options_set_pareto_section_limits(options, 10, 3.0));
+    CHECK_OK(sherd_refine_options_set_edge(options, edge));
+    CHECK_OK(sherd_refine_options_set_tangent_tolerance_mm(options, tolerance_mm));
+    CHECK_OK(sherd_refine(mesh, start, options, &refinement));
+    sherd_refine_options_free(options);
+    CHECK_OK(sherd_refinement_axis(refinement, &refined));
+    CHECK_OK(sherd_refinement_report(refinement, summary));
+    sherd_refinement_free(refinement);
+    return refined;
+}
+
+static void pareto_choice_and_tangent_options(SherdMesh *mesh, const SherdAxis *start, const SherdAxis *truth) {
+    SherdRefineReport summary;
+    SherdAxis centres = refine_with(mesh, start, SHERD_CRITERION_PARETO, SHERD_PARETO_CHOICE_CENTRES, 0,
+                                    SHERD_EDGE_DETECT, 3.0, &summary);
+    size_t front_size = summary.pareto_point_count;
+    SherdAxis residuals = refine_with(mesh, start, SHERD_CRITERION_PARETO, SHERD_PARETO_CHOICE_RESIDUALS, 0,
+                                      SHERD_EDGE_DETECT, 3.0, &summary);
+    SherdAxis tangent;
+
+    CHECK(front_size >= 2 && summary.pareto_point_count == front_size);
+    CHECK(line_angle_deg(&centres, &residuals) > 1e-6);
+    printf("  Pareto: the best centres and the best residuals %.3f deg apart on a front of %u points\n",
+           line_angle_deg(&centres, &residuals), (unsigned)front_size);
+    tangent = refine_with(mesh, start, SHERD_CRITERION_TANGENT, SHERD_PARETO_CHOICE_KNEE, 0, SHERD_EDGE_RIM, 1.0, &summary);
+    CHECK(summary.criterion == SHERD_CRITERION_TANGENT);
+    CHECK(line_angle_deg(&tangent, truth) < 3.0);
+    printf("  tangent plane on the rim, epsilon 1 mm: %.3f deg from the truth\n", line_angle_deg(&tangent, truth));
+}
+
 /* Orientation both ways, refinement (every criterion when `all_criteria`, AUTO
  * otherwise: valgrind makes each one slow), then measurements, exports and drawing. */
 static void orient_and_refine(SherdMesh *mesh, const SherdAxis *truth, const char *origin, int all_criteria) {
@@ -222,6 +267,7 @@ static void orient_and_refine(SherdMesh *mesh, const SherdAxis *truth, const cha
         sherd_refinement_free(refinement);
     }
 
+    if (all_criteria) pareto_choice_and_tangent_options(mesh, &axis, truth);
     measure_and_export(mesh, &refined, origin);
     draw(mesh, &refined);
 }

@@ -109,6 +109,38 @@ def test_refine_with_each_criterion(oriented_rim, criterion):
         assert refinement.pareto_front.shape == (0, 4)
 
 
+@pytest.mark.parametrize("choice, column", [("centres", 2), ("residuals", 3)])
+def test_the_pareto_choice_takes_the_end_of_the_front_it_names(oriented_rim, choice, column):
+    mesh, _, start = oriented_rim
+    refinement = sherd.refine(mesh, start, criterion="pareto", pareto_choice=choice)
+    front = refinement.pareto_front
+    best = front[np.argmin(front[:, column])]
+    # The front's tilts are from the start axis, as the refinement's tilt is.
+    assert refinement.tilt_deg == pytest.approx(np.hypot(best[0], best[1]), abs=0.05)
+
+
+def test_the_mean_of_the_best_pareto_solutions_and_the_tangent_plane_options(oriented_rim):
+    mesh, truth, start = oriented_rim
+    knee = sherd.refine(mesh, start, criterion="pareto")
+    mean = sherd.refine(mesh, start, criterion="pareto", pareto_choice=("mean_of_best", 2),
+                        pareto_section_limits=(12, 5.0))
+    assert len(mean.pareto_front) >= 2 and angle_deg(mean.axis, truth, signed=False) < 5.0
+    assert angle_deg(mean.axis, knee.axis, signed=False) > 0.0 or len(knee.pareto_front) != len(mean.pareto_front)
+    tangent = sherd.refine(mesh, start, criterion="tangent", edge="rim", tangent_tolerance_mm=1.0)
+    assert tangent.criterion == "tangent" and angle_deg(tangent.axis, truth, signed=False) < 3.0
+    assert tangent.report["edge"] == "Rim"
+    with pytest.raises(sherd.InvalidArgumentError, match="unknown pareto_choice"):
+        sherd.refine(mesh, start, pareto_choice="median")
+    with pytest.raises(sherd.InvalidArgumentError, match="at least 1"):
+        sherd.refine(mesh, start, pareto_choice=("mean_of_best", 0))
+    with pytest.raises(sherd.InvalidArgumentError, match="min_points"):
+        sherd.refine(mesh, start, pareto_section_limits=(2, 3.0))
+    with pytest.raises(sherd.InvalidArgumentError, match="tolerance_mm"):
+        sherd.refine(mesh, start, tangent_tolerance_mm=-1.0)
+    with pytest.raises(sherd.InvalidArgumentError, match="unknown edge"):
+        sherd.refine(mesh, start, edge="lip")
+
+
 def test_refine_rejects_unknown_values(oriented_rim):
     mesh, _, start = oriented_rim
     with pytest.raises(sherd.InvalidArgumentError, match="unknown criterion"):

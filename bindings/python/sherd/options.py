@@ -28,7 +28,8 @@ def take_json(buffer):
 class Options:
     """An option builder ``sherd_<name>_options``, freed on exit. ``values`` maps each
     keyword to its value (None keeps the library's default), ``setters`` each keyword to
-    the converter of its value for the C setter ``sherd_<name>_options_set_<keyword>``."""
+    the converter of its value for the C setter ``sherd_<name>_options_set_<keyword>``
+    (a tuple for a setter of several arguments)."""
 
     def __init__(self, name, values, setters):
         self.name = name
@@ -41,7 +42,8 @@ class Options:
                 if key not in setters:
                     raise TypeError(f"unknown {name} option {key!r}")
                 setter = getattr(c.lib, f"sherd_{name}_options_set_{key}")
-                check(setter(self.handle, setters[key](value)))
+                arguments = setters[key](value)
+                check(setter(self.handle, *(arguments if isinstance(arguments, tuple) else (arguments,))))
         except BaseException:
             self.close()
             raise

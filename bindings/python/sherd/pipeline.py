@@ -139,23 +139,48 @@ class Refinement:
     it may be."""
 
 
-def _refine_options(criterion="auto", surface="both", section_count=0, search_bound_deg=None):
+PARETO_CHOICES = {"knee": 0, "centres": 1, "residuals": 2, "mean_of_best": 3}
+EDGES = {"detect": 0, "rim": 1, "base": 2}
+
+
+def _pareto_choice(value):
+    """"knee", "centres", "residuals", or ("mean_of_best", n): the C setter's two arguments."""
+    if isinstance(value, (tuple, list)):
+        name, count = value
+        return enum_value(PARETO_CHOICES, name, "pareto_choice"), int(count)
+    return enum_value(PARETO_CHOICES, value, "pareto_choice"), 0
+
+
+def _refine_options(criterion="auto", surface="both", section_count=0, search_bound_deg=None, pareto_choice=None,
+                    pareto_section_limits=None, tangent_tolerance_mm=None, edge=None):
     setters = {
         "criterion": lambda v: enum_value(CRITERIA, v, "criterion"),
         "surface": lambda v: enum_value(SURFACES, v, "surface"),
         "section_count": int,
         "search_bound_deg": float,
+        "pareto_choice": _pareto_choice,
+        "pareto_section_limits": lambda v: (int(v[0]), float(v[1])),
+        "tangent_tolerance_mm": float,
+        "edge": lambda v: enum_value(EDGES, v, "edge"),
     }
     values = dict(criterion=criterion, surface=surface, section_count=section_count,
-                  search_bound_deg=search_bound_deg)
+                  search_bound_deg=search_bound_deg, pareto_choice=pareto_choice,
+                  pareto_section_limits=pareto_section_limits, tangent_tolerance_mm=tangent_tolerance_mm, edge=edge)
     return Options("refine", values, setters)
 
 
-def refine(mesh, axis, *, criterion="auto", surface="both", section_count=0, search_bound_deg=None):
-    """Refines ``axis`` on ``mesh`` (the paper's section 2.3)."""
+def refine(mesh, axis, *, criterion="auto", surface="both", section_count=0, search_bound_deg=None,
+           pareto_choice=None, pareto_section_limits=None, tangent_tolerance_mm=None, edge=None):
+    """Refines ``axis`` on ``mesh`` (the paper's section 2.3). ``pareto_choice`` picks the
+    Pareto criterion's solution: "knee" (the default), "centres" (Eq. 3 alone), "residuals"
+    (Eq. 4 alone) or ("mean_of_best", n); ``pareto_section_limits`` is (fewest points,
+    smallest arc in degrees) of a section the Pareto criterion keeps (10, 3.0);
+    ``tangent_tolerance_mm`` is Eq. 7's epsilon (3.0) and ``edge`` the edge the tangent
+    plane rests on: "detect" (the default), "rim" or "base"."""
     handle = c.SherdRefinement_p()
     c_axis = axis.to_c()
-    with _refine_options(criterion, surface, section_count, search_bound_deg) as options:
+    with _refine_options(criterion, surface, section_count, search_bound_deg, pareto_choice, pareto_section_limits,
+                         tangent_tolerance_mm, edge) as options:
         check(c.lib.sherd_refine(mesh.handle, ctypes.byref(c_axis), options, ctypes.byref(handle)))
     try:
         refined, summary, report = c.SherdAxis(), c.SherdRefineReport(), c.SherdBuffer_p()

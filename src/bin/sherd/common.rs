@@ -9,6 +9,8 @@ use sherd::draw::{DrawOptions, Style};
 use sherd::mesh::Point;
 use sherd::orient::{Axis, AxisRecord};
 use sherd::pipeline::PipelineOptions;
+use sherd::refine::pareto::{ParetoChoice, ParetoOptions};
+use sherd::refine::tangent::Edge;
 use sherd::refine::{Criterion, RefineOptions, Surface};
 
 /// Units of a scan file whose format does not say.
@@ -50,6 +52,36 @@ pub enum SurfaceChoice {
     Both,
 }
 
+/// The edge the tangent plane (Eq. 7) rests on.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum EdgeChoice {
+    /// The one whose extremes are level.
+    Detect,
+    Rim,
+    Base,
+}
+
+/// "knee", "centres", "residuals" or "mean-of-best:N" as the Pareto criterion's choice.
+fn parse_pareto_choice(text: &str) -> Result<ParetoChoice, String> {
+    match text {
+        "knee" => Ok(ParetoChoice::Knee),
+        "centres" => Ok(ParetoChoice::Centres),
+        "residuals" => Ok(ParetoChoice::Residuals),
+        _ => match text.strip_prefix("mean-of-best:").map(str::parse::<usize>) {
+            Some(Ok(count)) if count >= 1 => Ok(ParetoChoice::MeanOfBest(count)),
+            _ => Err(format!("{text:?} is not knee, centres, residuals or mean-of-best:N (N at least 1)")),
+        },
+    }
+}
+
+/// A finite positive number of millimetres.
+fn parse_positive_mm(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(value) if value.is_finite() && value > 0.0 => Ok(value),
+        _ => Err(format!("{text:?} is not a positive number of millimetres")),
+    }
+}
+
 /// How a scan is oriented and measured.
 #[derive(Args, Debug, Clone)]
 pub struct AnalysisArgs {
@@ -63,6 +95,19 @@ pub struct AnalysisArgs {
     /// Skins the refinement uses.
     #[arg(long, value_enum, default_value = "both")]
     pub surface: SurfaceChoice,
+    /// Which solution of the Pareto front becomes the axis (--refine pareto): knee (the
+    /// smallest product of the two costs), centres (Eq. 3 alone), residuals (Eq. 4 alone),
+    /// or mean-of-best:N (the mean of the N best; the original tool takes 2).
+    #[arg(long, value_name = "CHOICE", default_value = "knee", value_parser = parse_pareto_choice)]
+    pub pareto_choice: ParetoChoice,
+    /// The tangent plane's tolerance epsilon (Eq. 7), mm: a vertical section whose extreme
+    /// lies farther below the rim's highest point (above the base's lowest) is taken for
+    /// damaged and left out.
+    #[arg(long, value_name = "MM", default_value = "3", value_parser = parse_positive_mm)]
+    pub tangent_tolerance: f64,
+    /// The edge the tangent plane rests on (--refine tangent or auto).
+    #[arg(long, value_enum, default_value = "detect")]
+    pub edge: EdgeChoice,
     /// Units of the scan. Without it, the unit a comment of the file declares ("comment
     /// units cm" in a PLY header, "# units cm" in an OBJ), else millimetres (what
     /// scanners mostly write). Given, it overrides the file.
@@ -92,7 +137,22 @@ impl AnalysisArgs {
             SurfaceChoice::Outer => Surface::Outer,
             SurfaceChoice::Both => Surface::Both,
         };
-        options.refine = criterion.map(|criterion| RefineOptions { criterion, surface, ..Default::default() });
+        let edge = match self.edge {
+            EdgeChoice::Detect => None,
+            EdgeChoice::Rim => Some(Edge::Rim),
+            EdgeChoice::Base => Some(Edge::Base),
+        };
+        options.refine = criterion.map(|criterion| {
+            let defaults = RefineOptions::default();
+            RefineOptions {
+                criterion,
+                surface,
+                pareto: ParetoOptions { choice: self.pareto_choice, ..defaults.pareto.clone() },
+                tangent_tolerance_mm: self.tangent_tolerance,
+                edge,
+                ..defaults
+            }
+        });
         if let Some(refine) = &options.refine {
             options.measure.refine = refine.clone();
         }
