@@ -272,6 +272,21 @@ def test_synthetic_sherd(vendored, operators):
     # Non-dominated: no point is better than another in both costs.
     assert not ((front[:, None, 2] < front[None, :, 2]) & (front[:, None, 3] < front[None, :, 3])).any()
     assert "Pareto front" in panel_texts(operators.__name__.rsplit(".", 1)[0])
+    # The Pareto solution and the tangent plane's options reach the library: the operator's
+    # axis is the one sherd.refine gives from the same stored axis with the same options.
+    for options in (dict(criterion="pareto", pareto_choice="centres"),
+                    dict(criterion="pareto", pareto_choice="mean_of_best", pareto_mean_count=3),
+                    dict(criterion="tangent", edge="rim", tangent_tolerance_mm=1.0)):
+        before = operators.stored_axis(obj)
+        positions, triangles, _ = operators.world_arrays(obj)
+        direct_options = dict(options)
+        if direct_options.get("pareto_choice") == "mean_of_best":
+            direct_options["pareto_choice"] = ("mean_of_best", direct_options.pop("pareto_mean_count"))
+        direct = vendored.refine(vendored.Mesh.from_arrays(positions, triangles), before, **direct_options)
+        assert bpy.ops.sherd.refine(surface="both", **options) == {'FINISHED'}, operators.REPORTS[-1:]
+        assert np.allclose(obj["sherd_axis_direction"], direct.axis.direction, atol=1e-9), options
+        assert obj["sherd_axis_source"].startswith(f"refined ({options['criterion']}"), obj["sherd_axis_source"]
+    print("  the Pareto solution, the tangent plane's edge and epsilon reach the library")
     assert bpy.ops.sherd.refine(criterion="circles", surface="outer") == {'FINISHED'}, operators.REPORTS[-1:]
     assert obj["sherd_axis_source"].startswith("refined (circles, outer")
     assert len(obj["sherd_pareto_front"]) == 0

@@ -41,6 +41,17 @@ SURFACE_ITEMS = [
     ("outer", "Outer", "Outer surface only"),
     ("inner", "Inner", "Inner surface only"),
 ]
+PARETO_CHOICE_ITEMS = [
+    ("knee", "Knee", "The front's solution with the smallest product of the two costs"),
+    ("centres", "Centres", "The best centre dispersion (Eq. 3 alone)"),
+    ("residuals", "Residuals", "The best circle residual (Eq. 4 alone)"),
+    ("mean_of_best", "Mean of best", "The mean of the best solutions (the original tool takes 2)"),
+]
+EDGE_ITEMS = [
+    ("detect", "Detect", "The rim or base whose extremes are level"),
+    ("rim", "Rim", "The tangent plane on the rim's highest points"),
+    ("base", "Base", "The tangent plane on the base's lowest points"),
+]
 
 
 class InputError(Exception):
@@ -234,17 +245,24 @@ class SHERD_OT_orient_three_points(SherdOperator, bpy.types.Operator):
 
 
 class SHERD_OT_refine(SherdOperator, bpy.types.Operator):
-    """Refine the stored axis with the chosen criterion and surface"""
+    """Refine the stored axis with the chosen criterion and surface (and, for the Pareto
+    criterion, the solution taken; for the tangent plane, its edge and epsilon)"""
 
     bl_idname = "sherd.refine"
     bl_label = "Refine"
 
     criterion: bpy.props.EnumProperty(name="Criterion", items=CRITERION_ITEMS, default="auto")
     surface: bpy.props.EnumProperty(name="Surface", items=SURFACE_ITEMS, default="both")
+    pareto_choice: bpy.props.EnumProperty(name="Pareto solution", items=PARETO_CHOICE_ITEMS, default="knee")
+    pareto_mean_count: bpy.props.IntProperty(name="Best averaged", default=2, min=1, max=100)
+    edge: bpy.props.EnumProperty(name="Edge", items=EDGE_ITEMS, default="detect")
+    tangent_tolerance_mm: bpy.props.FloatProperty(name="Epsilon (mm)", default=3.0, min=0.01, max=100.0)
 
     def run(self, context):
-        obj, _, _, refinement = with_stored_axis(
-            context, lambda mesh, axis: sherd().refine(mesh, axis, criterion=self.criterion, surface=self.surface))
+        choice = (self.pareto_choice, self.pareto_mean_count) if self.pareto_choice == "mean_of_best" else self.pareto_choice
+        options = dict(criterion=self.criterion, surface=self.surface, pareto_choice=choice, edge=self.edge,
+                       tangent_tolerance_mm=self.tangent_tolerance_mm)
+        obj, _, _, refinement = with_stored_axis(context, lambda mesh, axis: sherd().refine(mesh, axis, **options))
         store_axis(obj, refinement.axis, f"refined ({refinement.criterion}, {refinement.surface})")
         obj["sherd_refine_residual_mm"] = float(refinement.residual_mm)
         obj["sherd_refine_tilt_deg"] = float(refinement.tilt_deg)

@@ -12,6 +12,10 @@ class SherdSettings(bpy.types.PropertyGroup):
 
     criterion: bpy.props.EnumProperty(name="Criterion", items=operators.CRITERION_ITEMS, default="auto")
     surface: bpy.props.EnumProperty(name="Surface", items=operators.SURFACE_ITEMS, default="both")
+    pareto_choice: bpy.props.EnumProperty(name="Solution", items=operators.PARETO_CHOICE_ITEMS, default="knee")
+    pareto_mean_count: bpy.props.IntProperty(name="Best averaged", default=2, min=1, max=100)
+    edge: bpy.props.EnumProperty(name="Edge", items=operators.EDGE_ITEMS, default="detect")
+    tangent_tolerance_mm: bpy.props.FloatProperty(name="Epsilon (mm)", default=3.0, min=0.01, max=100.0)
     drawing_path: bpy.props.StringProperty(name="File", subtype='FILE_PATH', default="//sherd.svg")
     drawing_style: bpy.props.EnumProperty(name="Style", items=operators.STYLE_ITEMS, options={'ENUM_FLAG'},
                                           default={"light", "occlusion"})
@@ -60,9 +64,18 @@ class SHERD_PT_panel(bpy.types.Panel):
         row = box.row(align=True)
         row.prop(settings, "criterion", text="")
         row.prop(settings, "surface", text="")
+        # The paper's parameters of the criterion chosen, and only those.
+        if settings.criterion == "pareto":
+            box.prop(settings, "pareto_choice")
+            if settings.pareto_choice == "mean_of_best":
+                box.prop(settings, "pareto_mean_count")
+        if settings.criterion in ("tangent", "auto"):
+            row = box.row(align=True)
+            row.prop(settings, "edge", text="")
+            row.prop(settings, "tangent_tolerance_mm", text="ε mm")
         refine = box.operator(operators.SHERD_OT_refine.bl_idname)
-        refine.criterion = settings.criterion
-        refine.surface = settings.surface
+        for name in ("criterion", "surface", "pareto_choice", "pareto_mean_count", "edge", "tangent_tolerance_mm"):
+            setattr(refine, name, getattr(settings, name))
         if "sherd_refine_residual_mm" in obj:
             _row(box, "Residual", f"{obj['sherd_refine_residual_mm']:.3f}", "mm")
             _row(box, "Tilt", f"{obj['sherd_refine_tilt_deg']:.2f}", "deg")
