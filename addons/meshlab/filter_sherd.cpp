@@ -32,6 +32,8 @@ const QStringList axisSources = {
 const QStringList applyToChoices = {"Layer transform", "Vertices"};
 const QStringList criteria = {"Circles", "Pareto", "Profile", "Tangent", "Auto"};
 const QStringList surfaces = {"Inner", "Outer", "Both"};
+const QStringList paretoChoices = {"Knee", "Best centres", "Best residuals", "Mean of the best"};
+const QStringList edges = {"Detect", "Rim", "Base"};
 const QStringList formats = {"SVG", "EPS", "PDF", "PNG"};
 const QStringList formatExtensions = {"svg", "eps", "pdf", "png"};
 const QStringList regularityMaps = {"Distance to the axis", "Distance to the ideal vessel"};
@@ -289,6 +291,12 @@ std::map<std::string, QVariant> refine(MeshModel& model, const RichParameterList
 	if (sections < 0) throw MLException(QString("Sherd: section_count %1 is negative (0 lets sherd choose).").arg(sections));
 	sherd::check(sherd_refine_options_set_section_count(options.get(), std::size_t(sections)));
 	sherd::check(sherd_refine_options_set_search_bound_deg(options.get(), double(parameters.getFloat("search_bound_deg"))));
+	int meanCount = parameters.getInt("pareto_mean_count");
+	if (meanCount < 0) throw MLException(QString("Sherd: pareto_mean_count %1 is negative.").arg(meanCount));
+	sherd::check(sherd_refine_options_set_pareto_choice(options.get(), std::uint32_t(parameters.getEnum("pareto_choice")),
+	                                                    std::size_t(meanCount)));
+	sherd::check(sherd_refine_options_set_edge(options.get(), std::uint32_t(parameters.getEnum("edge"))));
+	sherd::check(sherd_refine_options_set_tangent_tolerance_mm(options.get(), double(parameters.getFloat("tangent_tolerance_mm"))));
 	int applyTo = applyToParameter(parameters);
 	LayerMesh layer = layerMesh(model);
 	SherdAxis start = sherd::make_axis({0, 0, 0}, {0, 0, 1});
@@ -632,6 +640,18 @@ RichParameterList FilterSherdPlugin::initParameterList(const QAction* action, co
 		list.addParam(RichFloat("search_bound_deg", 10, "Search bound (deg)",
 		                        "Largest tilt from the start axis the search considers, degrees (above 0, at "
 		                        "most 45)."));
+		list.addParam(RichEnum("pareto_choice", SHERD_PARETO_CHOICE_KNEE, paretoChoices, "Pareto solution",
+		                       "With the Pareto criterion, the solution of the front that becomes the axis: the "
+		                       "knee (smallest product of the two costs), the best centre dispersion (Eq. 3), the "
+		                       "best circle residual (Eq. 4), or the mean of the best few (below)."));
+		list.addParam(RichInt("pareto_mean_count", 2, "Best averaged",
+		                      "How many of the best solutions the mean takes (the original tool takes 2)."));
+		list.addParam(RichEnum("edge", SHERD_EDGE_DETECT, edges, "Tangent plane's edge",
+		                       "With the tangent or auto criterion: the rim, the base, or the one whose extremes "
+		                       "are level."));
+		list.addParam(RichFloat("tangent_tolerance_mm", 3, "Tangent plane's epsilon (mm)",
+		                        "Eq. 7's tolerance: a vertical section whose extreme lies farther than this below "
+		                        "the rim's top (above the base's bottom) is taken for damaged and left out."));
 		addApplyToParameter(list);
 		break;
 	case FP_SHERD_MEASURE:

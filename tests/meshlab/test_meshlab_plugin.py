@@ -210,6 +210,22 @@ def test_refine_moves_the_layer_by_a_small_tilt(rim_sherd):
     assert not np.array_equal(after, before)
 
 
+def test_refine_takes_the_pareto_solution_and_the_tangent_planes_options(rim_sherd):
+    scan, _ = rim_sherd
+    tilts = {}
+    for choice in (1, 2, 3):
+        ms = load(scan)
+        ms.apply_filter("sherd_orient", refine=False)
+        tilts[choice] = ms.apply_filter("sherd_refine", start_axis=1, criterion=1, pareto_choice=choice,
+                                        pareto_mean_count=2)["tilt_deg"]
+    # The best centres and the best residuals are the two ends of one front.
+    assert tilts[1] != tilts[2], tilts
+    ms = load(scan)
+    ms.apply_filter("sherd_orient", refine=False)
+    report = ms.apply_filter("sherd_refine", start_axis=1, criterion=3, edge=1, tangent_tolerance_mm=1.0)
+    assert 0 <= report["tilt_deg"] <= 10.0
+
+
 @pytest.mark.parametrize("fmt, suffix", [(0, "svg"), (2, "pdf"), (3, "png")])
 def test_draw_writes_the_illustration(rim_sherd, tmp_path, fmt, suffix):
     scan, _ = rim_sherd
@@ -227,6 +243,8 @@ def test_draw_writes_the_illustration(rim_sherd, tmp_path, fmt, suffix):
     ("sherd_draw", dict(scale_denominator=0), "scale 1:0"),
     ("sherd_reconstruct", dict(segments=2), "at least 3"),
     ("sherd_refine", dict(search_bound_deg=95.0), "search_bound_deg"),
+    ("sherd_refine", dict(pareto_choice=3, pareto_mean_count=0), "at least 1"),
+    ("sherd_refine", dict(tangent_tolerance_mm=-1.0), "tolerance_mm"),
     ("sherd_measure", dict(confidence=1.5), "confidence"),
     ("sherd_orient", dict(method=1), "Sherd"),
 ])
