@@ -314,6 +314,71 @@ typedef uint32_t SherdEdge;
 #endif // __cplusplus
 
 /**
+ * The form of the profile criterion (`sherd_refine_options_set_profile_method`).
+ */
+enum SherdProfileMethod
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Eq. 5: distance to the longest vertical profile; the parameter is the number of
+   * vertical sections (2 to 1000).
+   */
+  SHERD_PROFILE_METHOD_REFERENCE = 0,
+  /**
+   * Eq. 6: a polynomial profile per skin; the parameter is its degree (1 to 20).
+   */
+  SHERD_PROFILE_METHOD_POLYNOMIAL = 1,
+  /**
+   * Eq. 6 with a cubic spline profile per skin (the default); the parameter is the
+   * distance between its knots, mm (0.1 to 1000; 1.5 by default).
+   */
+  SHERD_PROFILE_METHOD_SPLINE = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdProfileMethod SherdProfileMethod;
+#else
+typedef uint32_t SherdProfileMethod;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * The circle fit of each horizontal section in the Pareto criterion (Chernov), for
+ * `sherd_refine_options_set_circle_fit`.
+ */
+enum SherdCircleFit
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Kåsa's algebraic fit: fast, biased towards small radii on short arcs.
+   */
+  SHERD_CIRCLE_FIT_KASA = 0,
+  /**
+   * Pratt's algebraic fit.
+   */
+  SHERD_CIRCLE_FIT_PRATT = 1,
+  /**
+   * Taubin's algebraic fit: nearly unbiased (the default).
+   */
+  SHERD_CIRCLE_FIT_TAUBIN = 2,
+  /**
+   * The geometric fit (orthogonal distances), started from Taubin's.
+   */
+  SHERD_CIRCLE_FIT_GEOMETRIC = 3,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdCircleFit SherdCircleFit;
+#else
+typedef uint32_t SherdCircleFit;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
  * Output formats of `sherd_drawing_to_buffer`.
  */
 enum SherdFormat
@@ -1417,6 +1482,26 @@ SherdStatus sherd_refine_options_set_pareto_choice(SherdRefineOptions *options,
 SherdStatus sherd_refine_options_set_pareto_section_limits(SherdRefineOptions *options,
                                                            size_t min_points,
                                                            double min_sector_deg);
+
+/**
+ * The form of the profile criterion: a `SHERD_PROFILE_METHOD_*` value and its parameter
+ * (the number of vertical sections of Eq. 5, the degree of Eq. 6's polynomial, or the
+ * knot spacing of its spline in mm; see the values).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_profile_method(SherdRefineOptions *options,
+                                                    uint32_t method,
+                                                    double parameter);
+
+/**
+ * The circle fit of the Pareto criterion's sections: a `SHERD_CIRCLE_FIT_*` value.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_circle_fit(SherdRefineOptions *options, uint32_t method);
 
 /**
  * The tangent plane's tolerance epsilon (Eq. 7), mm (finite, positive; 3 by default): a

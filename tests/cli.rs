@@ -229,8 +229,8 @@ fn orient_plots_the_pareto_front_when_asked() {
 }
 
 /// The refinement's parameters of the paper reach the command: which Pareto solution
-/// becomes the axis, the tangent plane's epsilon and edge; bad values are refused with
-/// the value named.
+/// becomes the axis and its circle fit, the tangent plane's epsilon and edge, the profile
+/// criterion's form; bad values are refused with the value named.
 #[test]
 fn orient_takes_the_pareto_choice_and_the_tangent_planes_options() {
     let dir = tempfile::tempdir().unwrap();
@@ -246,7 +246,17 @@ fn orient_takes_the_pareto_choice_and_the_tangent_planes_options() {
     assert_eq!(json["method"], "automatic + tangent", "{json:#}");
     assert!(angle_deg(vector(&json["axis"]["direction"]), truth) < 3.0, "{json:#}");
 
+    let reference = direction(&["--refine", "profile", "--profile-method", "reference:12"]);
+    let spline = direction(&["--refine", "profile", "--profile-method", "spline:1.5"]);
+    assert!(angle_deg(reference, spline) > 1e-9, "two forms of the profile criterion gave one axis");
+    assert!(angle_deg(reference, truth) < 3.0);
+    let geometric = direction(&["--refine", "pareto", "--circle-fit", "geometric"]);
+    assert!(angle_deg(geometric, truth) < 5.0);
+
     for (flag, value, named) in [
+        ("--profile-method", "polynomial:0", "polynomial:0"),
+        ("--profile-method", "legendre:4", "legendre:4"),
+        ("--circle-fit", "hyper", "hyper"),
         ("--pareto-choice", "mean-of-best:0", "mean-of-best:0"),
         ("--pareto-choice", "median", "median"),
         ("--tangent-tolerance", "-1", "-1"),

@@ -7,7 +7,7 @@ use super::error::{Failure, FfiResult};
 use super::panic::guard;
 use super::pointers::{borrow, borrow_mut, require, write_out};
 use super::status::SherdStatus;
-use super::refine::{SherdCriterion, SherdEdge, SherdParetoChoice, SherdSurface};
+use super::refine::{SherdCircleFit, SherdCriterion, SherdEdge, SherdParetoChoice, SherdProfileMethod, SherdSurface};
 use crate::draw::{DrawOptions, Placement, RegularityKind, SectionFill, Style};
 use crate::mesh::repair::RepairOptions;
 use crate::orient::{ManualOptions, OrientOptions};
@@ -398,6 +398,26 @@ pub unsafe extern "C" fn sherd_refine_options_set_pareto_section_limits(
         pareto.min_sector_angle_deg = min_sector_deg;
         Ok(())
     })
+}
+
+/// The form of the profile criterion: a `SHERD_PROFILE_METHOD_*` value and its parameter
+/// (the number of vertical sections of Eq. 5, the degree of Eq. 6's polynomial, or the
+/// knot spacing of its spline in mm; see the values).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_profile_method(options: *mut SherdRefineOptions, method: u32, parameter: f64) -> SherdStatus {
+    assign("sherd_refine_options_set_profile_method", options, |o| &mut o.profile_method, || SherdProfileMethod::parse(method, parameter))
+}
+
+/// The circle fit of the Pareto criterion's sections: a `SHERD_CIRCLE_FIT_*` value.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_circle_fit(options: *mut SherdRefineOptions, method: u32) -> SherdStatus {
+    assign("sherd_refine_options_set_circle_fit", options, |o| &mut o.pareto.circle_fit, || SherdCircleFit::parse(method))
 }
 
 /// The tangent plane's tolerance epsilon (Eq. 7), mm (finite, positive; 3 by default): a

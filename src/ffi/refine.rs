@@ -10,7 +10,9 @@ use super::orient::{SherdAxis, read_axis};
 use super::panic::guard;
 use super::pointers::{SizedStruct, borrow, host_slice_mut, require, write_out, write_sized};
 use super::status::SherdStatus;
+use crate::refine::circle_fit::CircleFitMethod;
 use crate::refine::pareto::ParetoChoice;
+use crate::refine::profile::ProfileMethod;
 use crate::refine::tangent::Edge;
 use crate::refine::{Criterion, Refinement, Surface};
 
@@ -104,6 +106,68 @@ impl SherdEdge {
             1 => Some(Edge::Rim),
             2 => Some(Edge::Base),
             other => return Err(Failure::invalid(format!("`edge` {other} is not a SHERD_EDGE_* value (0 to 2)"))),
+        })
+    }
+}
+
+/// The form of the profile criterion (`sherd_refine_options_set_profile_method`).
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SherdProfileMethod {
+    /// Eq. 5: distance to the longest vertical profile; the parameter is the number of
+    /// vertical sections (2 to 1000).
+    Reference = 0,
+    /// Eq. 6: a polynomial profile per skin; the parameter is its degree (1 to 20).
+    Polynomial = 1,
+    /// Eq. 6 with a cubic spline profile per skin (the default); the parameter is the
+    /// distance between its knots, mm (0.1 to 1000; 1.5 by default).
+    Spline = 2,
+}
+
+impl SherdProfileMethod {
+    /// The method for a value and parameter from the host.
+    pub(crate) fn parse(value: u32, parameter: f64) -> FfiResult<ProfileMethod> {
+        let whole = || {
+            if parameter.fract() == 0.0 && (0.0..=1e6).contains(&parameter) {
+                Ok(parameter as usize)
+            } else {
+                Err(Failure::invalid(format!("`parameter` must be a whole number for this method, got {parameter}")))
+            }
+        };
+        let method = match value {
+            0 => ProfileMethod::ReferenceProfile { vertical_sections: whole()? },
+            1 => ProfileMethod::Polynomial { degree: whole()? },
+            2 => ProfileMethod::Spline { knot_spacing_mm: parameter },
+            other => return Err(Failure::invalid(format!("`method` {other} is not a SHERD_PROFILE_METHOD_* value (0 to 2)"))),
+        };
+        Ok(method.validated()?)
+    }
+}
+
+/// The circle fit of each horizontal section in the Pareto criterion (Chernov), for
+/// `sherd_refine_options_set_circle_fit`.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SherdCircleFit {
+    /// Kåsa's algebraic fit: fast, biased towards small radii on short arcs.
+    Kasa = 0,
+    /// Pratt's algebraic fit.
+    Pratt = 1,
+    /// Taubin's algebraic fit: nearly unbiased (the default).
+    Taubin = 2,
+    /// The geometric fit (orthogonal distances), started from Taubin's.
+    Geometric = 3,
+}
+
+impl SherdCircleFit {
+    /// The fit for a value from the host.
+    pub(crate) fn parse(value: u32) -> FfiResult<CircleFitMethod> {
+        Ok(match value {
+            0 => CircleFitMethod::Kasa,
+            1 => CircleFitMethod::Pratt,
+            2 => CircleFitMethod::Taubin,
+            3 => CircleFitMethod::Geometric,
+            other => return Err(Failure::invalid(format!("`method` {other} is not a SHERD_CIRCLE_FIT_* value (0 to 3)"))),
         })
     }
 }

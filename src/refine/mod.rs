@@ -198,6 +198,7 @@ pub(crate) fn validate(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Res
     if options.section_count == Some(0) {
         return Err(Error::InvalidArgument("section_count must be at least 1".into()));
     }
+    options.profile_method.validated()?;
     if let Some(count) = options.section_count.filter(|&c| c > MAX_SECTION_COUNT) {
         return Err(Error::InvalidArgument(format!("section_count must be at most {MAX_SECTION_COUNT}, got {count}")));
     }

@@ -57,6 +57,26 @@ impl Default for ProfileMethod {
     }
 }
 
+impl ProfileMethod {
+    /// The method if its parameter is in range (Eq. 5: 2 to 1000 vertical sections; Eq. 6:
+    /// a degree of 1 to 20, knots 0.1 to 1000 mm apart), else why not.
+    pub fn validated(self) -> crate::Result<Self> {
+        let problem = match self {
+            ProfileMethod::ReferenceProfile { vertical_sections } if !(2..=1000).contains(&vertical_sections) => {
+                format!("the reference profile's vertical sections must be 2 to 1000, got {vertical_sections}")
+            }
+            ProfileMethod::Polynomial { degree } if !(1..=20).contains(&degree) => {
+                format!("the profile polynomial's degree must be 1 to 20, got {degree}")
+            }
+            ProfileMethod::Spline { knot_spacing_mm } if !(0.1..=1000.0).contains(&knot_spacing_mm) => {
+                format!("the profile spline's knot spacing must be 0.1 to 1000 mm, got {knot_spacing_mm}")
+            }
+            _ => return Ok(self),
+        };
+        Err(crate::Error::InvalidArgument(problem))
+    }
+}
+
 /// A least-squares uniform cubic spline profile `r = f(z)`, lightly smoothed (second
 /// differences of the coefficients) so that knot spans without points stay defined.
 #[derive(Clone, Debug)]

@@ -184,6 +184,8 @@ static SherdRefineOptions *random_refine_options(void) {
     if (chance(30)) CALL(sherd_refine_options_set_pareto_section_limits(options, (size_t)below(20), random_double()));
     if (chance(30)) CALL(sherd_refine_options_set_tangent_tolerance_mm(options, random_double()));
     if (chance(30)) CALL(sherd_refine_options_set_edge(options, random_enum()));
+    if (chance(30)) CALL(sherd_refine_options_set_profile_method(options, random_enum(), random_double()));
+    if (chance(30)) CALL(sherd_refine_options_set_circle_fit(options, random_enum()));
     return options;
 }
 

@@ -349,6 +349,21 @@ static void test_refine_measure_draw_misuse(void) {
     CHECK_STATUS(sherd_refine_options_set_edge(refine_options, 3u), SHERD_STATUS_INVALID_ARGUMENT);
     CHECK_MESSAGE("SHERD_EDGE_");
     NULL_ARGUMENT(sherd_refine_options_set_edge(NULL, SHERD_EDGE_RIM), "options");
+    CHECK_STATUS(sherd_refine_options_set_profile_method(refine_options, 3u, 1.0), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("SHERD_PROFILE_METHOD_");
+    CHECK_STATUS(sherd_refine_options_set_profile_method(refine_options, SHERD_PROFILE_METHOD_POLYNOMIAL, 2.5),
+                 SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("whole number");
+    CHECK_STATUS(sherd_refine_options_set_profile_method(refine_options, SHERD_PROFILE_METHOD_POLYNOMIAL, 21.0),
+                 SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_refine_options_set_profile_method(refine_options, SHERD_PROFILE_METHOD_REFERENCE, 1.0),
+                 SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(sherd_refine_options_set_profile_method(refine_options, SHERD_PROFILE_METHOD_SPLINE, NAN),
+                 SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("knot spacing");
+    CHECK_OK(sherd_refine_options_set_profile_method(refine_options, SHERD_PROFILE_METHOD_SPLINE, 2.0));
+    CHECK_STATUS(sherd_refine_options_set_circle_fit(refine_options, 4u), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("SHERD_CIRCLE_FIT_");
     NULL_ARGUMENT(sherd_refine_options_set_criterion(NULL, 0), "options");
     NULL_ARGUMENT(sherd_refine_options_new(NULL), "out_options");
 

@@ -141,6 +141,24 @@ def test_the_mean_of_the_best_pareto_solutions_and_the_tangent_plane_options(ori
         sherd.refine(mesh, start, edge="lip")
 
 
+
+def test_the_profile_criterions_forms_and_the_pareto_circle_fit(oriented_rim):
+    mesh, truth, start = oriented_rim
+    axes = {name: sherd.refine(mesh, start, criterion="profile", profile_method=(name, parameter)).axis
+            for name, parameter in (("reference", 12), ("polynomial", 4), ("spline", 1.5))}
+    default = sherd.refine(mesh, start, criterion="profile").axis
+    assert np.allclose(axes["spline"].direction, default.direction, atol=1e-12)
+    assert angle_deg(axes["reference"], axes["polynomial"], signed=False) > 0.0
+    geometric = sherd.refine(mesh, start, criterion="pareto", circle_fit="geometric")
+    assert len(geometric.pareto_front) >= 2 and angle_deg(geometric.axis, truth, signed=False) < 5.0
+    with pytest.raises(sherd.InvalidArgumentError, match="whole number"):
+        sherd.refine(mesh, start, profile_method=("polynomial", 2.5))
+    with pytest.raises(sherd.InvalidArgumentError, match="unknown profile_method"):
+        sherd.refine(mesh, start, profile_method=("legendre", 4))
+    with pytest.raises(sherd.InvalidArgumentError, match="unknown circle_fit"):
+        sherd.refine(mesh, start, circle_fit="hyper")
+
+
 def test_refine_rejects_unknown_values(oriented_rim):
     mesh, _, start = oriented_rim
     with pytest.raises(sherd.InvalidArgumentError, match="unknown criterion"):

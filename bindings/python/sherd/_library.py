@@ -228,6 +228,8 @@ _declare("sherd_refine_options_set_pareto_choice", Status, SherdOptions_p, ctype
 _declare("sherd_refine_options_set_pareto_section_limits", Status, SherdOptions_p, ctypes.c_size_t, ctypes.c_double)
 _declare("sherd_refine_options_set_tangent_tolerance_mm", Status, SherdOptions_p, ctypes.c_double)
 _declare("sherd_refine_options_set_edge", Status, SherdOptions_p, ctypes.c_uint32)
+_declare("sherd_refine_options_set_profile_method", Status, SherdOptions_p, ctypes.c_uint32, ctypes.c_double)
+_declare("sherd_refine_options_set_circle_fit", Status, SherdOptions_p, ctypes.c_uint32)
 _declare("sherd_measure_options_set_refine_options", Status, SherdOptions_p, SherdOptions_p)
 _declare("sherd_measure_options_set_bootstrap_samples", Status, SherdOptions_p, ctypes.c_size_t)
 _declare("sherd_measure_options_set_bootstrap_seed", Status, SherdOptions_p, ctypes.c_uint64)

@@ -141,6 +141,8 @@ class Refinement:
 
 PARETO_CHOICES = {"knee": 0, "centres": 1, "residuals": 2, "mean_of_best": 3}
 EDGES = {"detect": 0, "rim": 1, "base": 2}
+PROFILE_METHODS = {"reference": 0, "polynomial": 1, "spline": 2}
+CIRCLE_FITS = {"kasa": 0, "pratt": 1, "taubin": 2, "geometric": 3}
 
 
 def _pareto_choice(value):
@@ -151,8 +153,15 @@ def _pareto_choice(value):
     return enum_value(PARETO_CHOICES, value, "pareto_choice"), 0
 
 
+def _profile_method(value):
+    """("reference", vertical sections), ("polynomial", degree) or ("spline", knot spacing mm)."""
+    name, parameter = value
+    return enum_value(PROFILE_METHODS, name, "profile_method"), float(parameter)
+
+
 def _refine_options(criterion="auto", surface="both", section_count=0, search_bound_deg=None, pareto_choice=None,
-                    pareto_section_limits=None, tangent_tolerance_mm=None, edge=None):
+                    pareto_section_limits=None, tangent_tolerance_mm=None, edge=None, profile_method=None,
+                    circle_fit=None):
     setters = {
         "criterion": lambda v: enum_value(CRITERIA, v, "criterion"),
         "surface": lambda v: enum_value(SURFACES, v, "surface"),
@@ -162,25 +171,33 @@ def _refine_options(criterion="auto", surface="both", section_count=0, search_bo
         "pareto_section_limits": lambda v: (int(v[0]), float(v[1])),
         "tangent_tolerance_mm": float,
         "edge": lambda v: enum_value(EDGES, v, "edge"),
+        "profile_method": _profile_method,
+        "circle_fit": lambda v: enum_value(CIRCLE_FITS, v, "circle_fit"),
     }
     values = dict(criterion=criterion, surface=surface, section_count=section_count,
                   search_bound_deg=search_bound_deg, pareto_choice=pareto_choice,
-                  pareto_section_limits=pareto_section_limits, tangent_tolerance_mm=tangent_tolerance_mm, edge=edge)
+                  pareto_section_limits=pareto_section_limits, tangent_tolerance_mm=tangent_tolerance_mm, edge=edge,
+                  profile_method=profile_method, circle_fit=circle_fit)
     return Options("refine", values, setters)
 
 
 def refine(mesh, axis, *, criterion="auto", surface="both", section_count=0, search_bound_deg=None,
-           pareto_choice=None, pareto_section_limits=None, tangent_tolerance_mm=None, edge=None):
+           pareto_choice=None, pareto_section_limits=None, tangent_tolerance_mm=None, edge=None,
+           profile_method=None, circle_fit=None):
     """Refines ``axis`` on ``mesh`` (the paper's section 2.3). ``pareto_choice`` picks the
     Pareto criterion's solution: "knee" (the default), "centres" (Eq. 3 alone), "residuals"
     (Eq. 4 alone) or ("mean_of_best", n); ``pareto_section_limits`` is (fewest points,
     smallest arc in degrees) of a section the Pareto criterion keeps (10, 3.0);
     ``tangent_tolerance_mm`` is Eq. 7's epsilon (3.0) and ``edge`` the edge the tangent
-    plane rests on: "detect" (the default), "rim" or "base"."""
+    plane rests on: "detect" (the default), "rim" or "base". ``profile_method`` is the
+    profile criterion's form: ("reference", vertical sections) for Eq. 5, ("polynomial",
+    degree) or ("spline", knot spacing in mm; the default ("spline", 1.5)) for Eq. 6;
+    ``circle_fit`` the Pareto criterion's circle fit per section: "kasa", "pratt",
+    "taubin" (the default) or "geometric"."""
     handle = c.SherdRefinement_p()
     c_axis = axis.to_c()
     with _refine_options(criterion, surface, section_count, search_bound_deg, pareto_choice, pareto_section_limits,
-                         tangent_tolerance_mm, edge) as options:
+                         tangent_tolerance_mm, edge, profile_method, circle_fit) as options:
         check(c.lib.sherd_refine(mesh.handle, ctypes.byref(c_axis), options, ctypes.byref(handle)))
     try:
         refined, summary, report = c.SherdAxis(), c.SherdRefineReport(), c.SherdBuffer_p()

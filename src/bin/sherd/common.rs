@@ -9,7 +9,9 @@ use sherd::draw::{DrawOptions, Style};
 use sherd::mesh::Point;
 use sherd::orient::{Axis, AxisRecord};
 use sherd::pipeline::PipelineOptions;
+use sherd::refine::circle_fit::CircleFitMethod;
 use sherd::refine::pareto::{ParetoChoice, ParetoOptions};
+use sherd::refine::profile::ProfileMethod;
 use sherd::refine::tangent::Edge;
 use sherd::refine::{Criterion, RefineOptions, Surface};
 
@@ -52,6 +54,17 @@ pub enum SurfaceChoice {
     Both,
 }
 
+/// The circle fit of the Pareto criterion's sections (Chernov).
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum CircleFitChoice {
+    Kasa,
+    Pratt,
+    /// Nearly unbiased on short arcs.
+    Taubin,
+    /// Orthogonal distances, started from Taubin's.
+    Geometric,
+}
+
 /// The edge the tangent plane (Eq. 7) rests on.
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum EdgeChoice {
@@ -72,6 +85,22 @@ fn parse_pareto_choice(text: &str) -> Result<ParetoChoice, String> {
             _ => Err(format!("{text:?} is not knee, centres, residuals or mean-of-best:N (N at least 1)")),
         },
     }
+}
+
+/// "reference:N", "polynomial:D" or "spline:MM" as the profile criterion's form.
+fn parse_profile_method(text: &str) -> Result<ProfileMethod, String> {
+    let wrong = || format!("{text:?} is not reference:N (vertical sections), polynomial:D (degree) or spline:MM (knot spacing)");
+    let (name, parameter) = text.split_once(':').ok_or_else(wrong)?;
+    let whole = || parameter.parse::<usize>().map_err(|_| format!("{text:?}: {parameter:?} is not a whole number"));
+    let method = match name {
+        "reference" => ProfileMethod::ReferenceProfile { vertical_sections: whole()? },
+        "polynomial" => ProfileMethod::Polynomial { degree: whole()? },
+        "spline" => ProfileMethod::Spline {
+            knot_spacing_mm: parameter.parse().map_err(|_| format!("{text:?}: {parameter:?} is not a number of millimetres"))?,
+        },
+        _ => return Err(wrong()),
+    };
+    method.validated().map_err(|e| format!("{text:?}: {e}"))
 }
 
 /// A finite positive number of millimetres.
@@ -108,6 +137,14 @@ pub struct AnalysisArgs {
     /// The edge the tangent plane rests on (--refine tangent or auto).
     #[arg(long, value_enum, default_value = "detect")]
     pub edge: EdgeChoice,
+    /// The profile criterion's form (--refine profile): reference:N (Eq. 5, N vertical
+    /// sections), polynomial:D (Eq. 6, degree D) or spline:MM (Eq. 6 as a cubic spline,
+    /// knots MM apart).
+    #[arg(long, value_name = "FORM", default_value = "spline:1.5", value_parser = parse_profile_method)]
+    pub profile_method: ProfileMethod,
+    /// The circle fit of each horizontal section in the Pareto criterion.
+    #[arg(long, value_enum, default_value = "taubin")]
+    pub circle_fit: CircleFitChoice,
     /// Units of the scan. Without it, the unit a comment of the file declares ("comment
     /// units cm" in a PLY header, "# units cm" in an OBJ), else millimetres (what
     /// scanners mostly write). Given, it overrides the file.
@@ -147,7 +184,17 @@ impl AnalysisArgs {
             RefineOptions {
                 criterion,
                 surface,
-                pareto: ParetoOptions { choice: self.pareto_choice, ..defaults.pareto.clone() },
+                pareto: ParetoOptions {
+                    choice: self.pareto_choice,
+                    circle_fit: match self.circle_fit {
+                        CircleFitChoice::Kasa => CircleFitMethod::Kasa,
+                        CircleFitChoice::Pratt => CircleFitMethod::Pratt,
+                        CircleFitChoice::Taubin => CircleFitMethod::Taubin,
+                        CircleFitChoice::Geometric => CircleFitMethod::Geometric,
+                    },
+                    ..defaults.pareto.clone()
+                },
+                profile_method: self.profile_method,
                 tangent_tolerance_mm: self.tangent_tolerance,
                 edge,
                 ..defaults
