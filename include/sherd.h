@@ -1806,6 +1806,18 @@ SherdStatus sherd_refinement_report_json(const SherdRefinement *refinement,
                                          SherdBuffer **out_report_json);
 
 /**
+ * Writes the Pareto front drawn as an SVG plot (centre dispersion, Eq. 3, against circle
+ * residual, Eq. 4, the chosen solution circled) into a new text buffer `*out_svg`, for a
+ * host to save or show. `SHERD_STATUS_INVALID_ARGUMENT` when the refinement has no front
+ * (its criterion was not Pareto).
+ *
+ * # Safety
+ * `refinement` must be a live handle; `out_svg` writable.
+ */
+SherdStatus sherd_refinement_pareto_plot_svg(const SherdRefinement *refinement,
+                                             SherdBuffer **out_svg);
+
+/**
  * Copies the Pareto front into `out_points` (room for `capacity` points) and writes the
  * number of points to `*out_count`. Pass `out_points` NULL and `capacity` 0 to learn the
  * count first. The front is empty unless the criterion was Pareto.

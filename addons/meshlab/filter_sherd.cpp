@@ -9,6 +9,7 @@
 #include <QJsonArray>
 #include <QJsonDocument>
 #include <QJsonObject>
+#include <QSaveFile>
 #include <QStringList>
 
 #include <vcg/complex/algorithms/update/bounding.h>
@@ -297,6 +298,10 @@ std::map<std::string, QVariant> refine(MeshModel& model, const RichParameterList
 	                                                    std::size_t(meanCount)));
 	sherd::check(sherd_refine_options_set_edge(options.get(), std::uint32_t(parameters.getEnum("edge"))));
 	sherd::check(sherd_refine_options_set_tangent_tolerance_mm(options.get(), double(parameters.getFloat("tangent_tolerance_mm"))));
+	QString plotPath = parameters.getSaveFileName("pareto_plot");
+	if (!plotPath.isEmpty() && parameters.getEnum("criterion") != SHERD_CRITERION_PARETO)
+		throw MLException("Sherd: pareto_plot draws the Pareto criterion's front: choose the Pareto criterion or leave "
+		                  "the plot's file empty.");
 	int applyTo = applyToParameter(parameters);
 	LayerMesh layer = layerMesh(model);
 	SherdAxis start = sherd::make_axis({0, 0, 0}, {0, 0, 1});
@@ -317,8 +322,21 @@ std::map<std::string, QVariant> refine(MeshModel& model, const RichParameterList
 	report.size = sizeof report;
 	SherdStatus axisStatus = sherd_refinement_axis(handle, &axis);
 	SherdStatus reportStatus = axisStatus == SHERD_STATUS_OK ? sherd_refinement_report(handle, &report) : axisStatus;
+	SherdBuffer* plot = nullptr;
+	SherdStatus plotStatus = reportStatus == SHERD_STATUS_OK && !plotPath.isEmpty()
+		? sherd_refinement_pareto_plot_svg(handle, &plot) : reportStatus;
 	sherd_refinement_free(handle);
 	sherd::check(reportStatus);
+	if (!plotPath.isEmpty()) {
+		sherd::check(plotStatus);
+		std::string svg = sherd::take_buffer(plot);
+		// QSaveFile writes beside the target and renames on commit: no half-written plot.
+		QSaveFile file(plotPath);
+		if (!file.open(QIODevice::WriteOnly) || file.write(svg.data(), qint64(svg.size())) != qint64(svg.size()) ||
+		    !file.commit())
+			throw MLException(QString("Sherd: cannot write the Pareto plot %1: %2").arg(plotPath, file.errorString()));
+		logger.log("Sherd: Pareto front plotted in %s", qUtf8Printable(plotPath));
+	}
 	Matrix44m oriented = toMatrix(layer.mesh.oriented_transform(axis));
 	applyOrientation(model, oriented, applyTo, postConditionMask);
 	logger.log("Sherd: refine (%s on %s, %zu sections): tilt %.3f deg, shift %.3f mm, residual %.4f -> %.4f mm",
@@ -649,6 +667,10 @@ RichParameterList FilterSherdPlugin::initParameterList(const QAction* action, co
 		list.addParam(RichEnum("edge", SHERD_EDGE_DETECT, edges, "Tangent plane's edge",
 		                       "With the tangent or auto criterion: the rim, the base, or the one whose extremes "
 		                       "are level."));
+		list.addParam(RichSaveFile("pareto_plot", QString(), "*.svg", "Pareto plot",
+		                           "With the Pareto criterion: where to write the front drawn as an SVG plot "
+		                           "(centre dispersion against circle residual, the chosen solution circled); "
+		                           "empty for none."));
 		list.addParam(RichFloat("tangent_tolerance_mm", 3, "Tangent plane's epsilon (mm)",
 		                        "Eq. 7's tolerance: a vertical section whose extreme lies farther than this below "
 		                        "the rim's top (above the base's bottom) is taken for damaged and left out."));

@@ -2,7 +2,7 @@
 //! handle, `SherdRefinement`, that holds the refined axis, its report and the Pareto
 //! front.
 
-use super::buffer::{SherdBuffer, hand_out_report};
+use super::buffer::{SherdBuffer, hand_out_report, hand_out_text};
 use super::error::{Failure, FfiResult};
 use super::mesh::{SherdMesh, mesh_ref};
 use super::options::{SherdRefineOptions, options_or_default};
@@ -347,6 +347,28 @@ pub unsafe extern "C" fn sherd_refinement_report_json(
         let refinement = unsafe { refinement_ref(refinement) }?;
         require(out_report_json.cast_const(), "out_report_json")?;
         unsafe { hand_out_report(out_report_json, &refinement.report) }
+    })
+}
+
+/// Writes the Pareto front drawn as an SVG plot (centre dispersion, Eq. 3, against circle
+/// residual, Eq. 4, the chosen solution circled) into a new text buffer `*out_svg`, for a
+/// host to save or show. `SHERD_STATUS_INVALID_ARGUMENT` when the refinement has no front
+/// (its criterion was not Pareto).
+///
+/// # Safety
+/// `refinement` must be a live handle; `out_svg` writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refinement_pareto_plot_svg(refinement: *const SherdRefinement, out_svg: *mut *mut SherdBuffer) -> SherdStatus {
+    guard("sherd_refinement_pareto_plot_svg", || {
+        let refinement = unsafe { refinement_ref(refinement) }?;
+        require(out_svg.cast_const(), "out_svg")?;
+        let svg = refinement.pareto_plot_svg().ok_or_else(|| {
+            Failure::invalid(format!(
+                "the refinement has no Pareto front to plot (its criterion was {:?})",
+                refinement.report.method
+            ))
+        })?;
+        unsafe { hand_out_text(out_svg, svg) }
     })
 }
 

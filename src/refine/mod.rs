@@ -174,6 +174,15 @@ pub struct Refinement {
     pub pareto_chosen: Option<ParetoPoint>,
 }
 
+impl Refinement {
+    /// The Pareto front drawn as an SVG plot ([`pareto::front_svg`]), the chosen solution
+    /// circled; `None` when the criterion was not Pareto or the front is empty.
+    pub fn pareto_plot_svg(&self) -> Option<String> {
+        let front = self.pareto_front.as_deref().filter(|front| !front.is_empty())?;
+        Some(pareto::front_svg(front, self.pareto_chosen.as_ref()))
+    }
+}
+
 /// Most horizontal sections a refinement accepts: a section every 0.1 mm of a 1 m sherd.
 /// Each section is a pass over the skins per cost evaluation, so the bound keeps a
 /// hostile option value from asking for unbounded time and memory.

@@ -268,6 +268,12 @@ def test_synthetic_sherd(vendored, operators):
     measurements_match_the_cli(obj, cli_record(vendored, operators, obj, "--refine", "none"))
     assert bpy.ops.sherd.refine(criterion="pareto", surface="both") == {'FINISHED'}, operators.REPORTS[-1:]
     front = np.array(obj["sherd_pareto_front"], dtype=np.float64)
+    with tempfile.TemporaryDirectory() as folder:
+        plot = os.path.join(folder, "front.svg")
+        assert bpy.ops.sherd.save_pareto_plot(filepath=plot) == {'FINISHED'}, operators.REPORTS[-1:]
+        text = Path(plot).read_text(encoding="utf-8")
+        assert text == obj["sherd_pareto_plot_svg"] and text.startswith("<svg")
+        assert text.count('fill="#3060c0"') == len(front) and os.listdir(folder) == ["front.svg"]
     assert front.shape[1] == 4 and len(front) == obj["sherd_pareto_point_count"] >= 2, front.shape
     # Non-dominated: no point is better than another in both costs.
     assert not ((front[:, None, 2] < front[None, :, 2]) & (front[:, None, 3] < front[None, :, 3])).any()
@@ -289,7 +295,9 @@ def test_synthetic_sherd(vendored, operators):
     print("  the Pareto solution, the tangent plane's edge and epsilon reach the library")
     assert bpy.ops.sherd.refine(criterion="circles", surface="outer") == {'FINISHED'}, operators.REPORTS[-1:]
     assert obj["sherd_axis_source"].startswith("refined (circles, outer")
-    assert len(obj["sherd_pareto_front"]) == 0
+    assert len(obj["sherd_pareto_front"]) == 0 and "sherd_pareto_plot_svg" not in obj
+    expect_cancelled(operators, lambda: bpy.ops.sherd.save_pareto_plot(filepath="/tmp/never.svg"), "no Pareto front")
+    assert not os.path.exists("/tmp/never.svg")
     # The axis kept: the automatic one refined with the library's choice of criterion (each
     # refinement starts from the stored axis; the criteria's accuracy is the refinement
     # layer's to measure: circles moves this sherd's axis by 1.4 deg).

@@ -295,8 +295,23 @@ static void orient_and_refine(SherdMesh *mesh, const SherdAxis *truth, const cha
                 }
             }
             free(front);
+            {
+                /* The front drawn, for a host to save or show. */
+                SherdBuffer *svg = NULL;
+                const uint8_t *text = NULL;
+                size_t length = 0;
+                CHECK_OK(sherd_refinement_pareto_plot_svg(refinement, &svg));
+                CHECK_OK(sherd_buffer_contents(svg, &text, &length));
+                CHECK(length > 100 && memcmp(text, "<svg", 4) == 0 && text[length] == '\0');
+                CHECK(strstr((const char *)text, "circle residual, Eq. 4") != NULL);
+                sherd_buffer_free(svg);
+            }
         } else {
+            SherdBuffer *svg = NULL;
             CHECK(count == 0);
+            CHECK_STATUS(sherd_refinement_pareto_plot_svg(refinement, &svg), SHERD_STATUS_INVALID_ARGUMENT);
+            CHECK(svg == NULL);
+            CHECK_MESSAGE("no Pareto front");
         }
         printf("  %s: refine criterion %u -> %u, %.3f deg from the truth, residual %.4f mm\n", origin,
                (unsigned)criterion, (unsigned)summary.criterion, line_angle_deg(&refined, truth),

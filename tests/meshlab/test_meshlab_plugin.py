@@ -220,6 +220,12 @@ def test_refine_takes_the_pareto_solution_and_the_tangent_planes_options(rim_she
                                         pareto_mean_count=2)["tilt_deg"]
     # The best centres and the best residuals are the two ends of one front.
     assert tilts[1] != tilts[2], tilts
+    plot = scan.parent / "front.svg"
+    ms = load(scan)
+    ms.apply_filter("sherd_orient", refine=False)
+    ms.apply_filter("sherd_refine", start_axis=1, criterion=1, pareto_plot=str(plot))
+    text = plot.read_text(encoding="utf-8")
+    assert text.startswith("<svg") and text.count("<title>chosen:") == 1 and text.count('fill="#3060c0"') >= 2
     ms = load(scan)
     ms.apply_filter("sherd_orient", refine=False)
     report = ms.apply_filter("sherd_refine", start_axis=1, criterion=3, edge=1, tangent_tolerance_mm=1.0)
@@ -245,6 +251,7 @@ def test_draw_writes_the_illustration(rim_sherd, tmp_path, fmt, suffix):
     ("sherd_refine", dict(search_bound_deg=95.0), "search_bound_deg"),
     ("sherd_refine", dict(pareto_choice=3, pareto_mean_count=0), "at least 1"),
     ("sherd_refine", dict(tangent_tolerance_mm=-1.0), "tolerance_mm"),
+    ("sherd_refine", dict(criterion=0, pareto_plot="front.svg"), "Pareto criterion"),
     ("sherd_measure", dict(confidence=1.5), "confidence"),
     ("sherd_orient", dict(method=1), "Sherd"),
 ])

@@ -105,8 +105,13 @@ def test_refine_with_each_criterion(oriented_rim, criterion):
         # Non-dominated: no point is better in both costs than another.
         dominated = (front[:, None, 2] < front[None, :, 2]) & (front[:, None, 3] < front[None, :, 3])
         assert not dominated.any()
+        # The plot has a point per solution of the front and the chosen one circled.
+        plot = refinement.pareto_plot_svg
+        assert plot.startswith("<svg") and plot.count('fill="#3060c0"') == len(front)
+        assert plot.count("<title>chosen:") == 1
     else:
         assert refinement.pareto_front.shape == (0, 4)
+        assert refinement.pareto_plot_svg == ""
 
 
 @pytest.mark.parametrize("choice, column", [("centres", 2), ("residuals", 3)])

@@ -5,6 +5,8 @@ transform. Library errors become Blender reports and ``{'CANCELLED'}``."""
 
 import contextlib
 import math
+import os
+import tempfile
 
 import bpy
 import numpy as np
@@ -15,6 +17,7 @@ from .library import LibraryMissingError, is_sherd_error, sherd
 AXIS_POINT = "sherd_axis_point"
 AXIS_DIRECTION = "sherd_axis_direction"
 AXIS_SOURCE = "sherd_axis_source"
+PARETO_PLOT = "sherd_pareto_plot_svg"
 MEASUREMENT_KEYS = {
     "rim_diameter_mm": "sherd_rim_diameter_mm",
     "rim_diameter_interval_mm": "sherd_rim_diameter_interval_mm",
@@ -269,6 +272,11 @@ class SHERD_OT_refine(SherdOperator, bpy.types.Operator):
         obj["sherd_pareto_point_count"] = len(refinement.pareto_front)
         # Each point: tilt about x and y (deg), centre dispersion and circle residual (mm^2).
         obj["sherd_pareto_front"] = refinement.pareto_front.tolist()
+        # The front drawn by the library, kept for Save Pareto plot (a few kB).
+        if refinement.pareto_plot_svg:
+            obj[PARETO_PLOT] = refinement.pareto_plot_svg
+        elif PARETO_PLOT in obj:
+            del obj[PARETO_PLOT]
         summary = f"refined: tilt {refinement.tilt_deg:.2f} deg, residual {refinement.residual_mm:.3f} mm"
         if refinement.flagged:
             # Kept and stored (the best guess); the measurements' intervals say how far off.
@@ -410,6 +418,36 @@ class SHERD_OT_draw(SherdOperator, bpy.types.Operator):
         return {'FINISHED'}
 
 
+class SHERD_OT_save_pareto_plot(SherdOperator, bpy.types.Operator):
+    """Save the last Pareto refinement's front as an SVG plot (centre dispersion against
+    circle residual, the chosen solution circled), to read it as the paper does"""
+
+    bl_idname = "sherd.save_pareto_plot"
+    bl_label = "Save Pareto plot"
+
+    filepath: bpy.props.StringProperty(name="File", subtype='FILE_PATH', default="//pareto_front.svg")
+
+    def invoke(self, context, event):
+        # From the panel's button: ask where, as Blender's exporters do.
+        context.window_manager.fileselect_add(self)
+        return {'RUNNING_MODAL'}
+
+    def run(self, context):
+        obj = active_mesh_object(context)
+        if PARETO_PLOT not in obj:
+            raise InputError(f"{obj.name!r} has no Pareto front: refine it with the Pareto criterion first")
+        path = bpy.path.abspath(self.filepath)
+        if not path or path.startswith("//"):
+            raise InputError("save the .blend file first or give an absolute path for the plot")
+        # Written beside and renamed, so that a failure leaves no half-written file.
+        folder = os.path.dirname(os.path.abspath(path))
+        with tempfile.NamedTemporaryFile("w", encoding="utf-8", dir=folder, suffix=".svg.part", delete=False) as part:
+            part.write(obj[PARETO_PLOT])
+        os.replace(part.name, path)
+        self.notify({'INFO'}, f"Pareto plot written to {path}")
+        return {'FINISHED'}
+
+
 REGULARITY_ITEMS = [
     ("ideal_vessel", "Ideal vessel", "Signed distance to the vessel revolved from the profile: blue inside the ideal "
                                      "wall, white on it, red outside"),
@@ -490,4 +528,4 @@ class SHERD_OT_regularity(SherdOperator, bpy.types.Operator):
 
 
 classes = (SHERD_OT_reconstruct, SHERD_OT_regularity, SHERD_OT_draw, SHERD_OT_orient_automatic, SHERD_OT_orient_three_points, SHERD_OT_refine, SHERD_OT_measure,
-           SHERD_OT_apply_orientation, SHERD_OT_add_axis_empty)
+           SHERD_OT_apply_orientation, SHERD_OT_add_axis_empty, SHERD_OT_save_pareto_plot)

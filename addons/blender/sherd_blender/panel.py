@@ -89,6 +89,8 @@ class SHERD_PT_panel(bpy.types.Panel):
                     column.label(text=f"{dispersion:.4f} / {residual:.4f}")
                 if len(front) > PARETO_ROWS:
                     column.label(text=f"... {len(front) - PARETO_ROWS} more (sherd_pareto_front)")
+                if operators.PARETO_PLOT in obj:
+                    box.operator(operators.SHERD_OT_save_pareto_plot.bl_idname)
 
         column = layout.column(align=True)
         column.operator(operators.SHERD_OT_apply_orientation.bl_idname)

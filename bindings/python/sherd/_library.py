@@ -241,6 +241,7 @@ _declare("sherd_refinement_report", Status, SherdRefinement_p, ctypes.POINTER(Sh
 _declare("sherd_refinement_report_json", Status, SherdRefinement_p, ctypes.POINTER(SherdBuffer_p))
 _declare("sherd_refinement_pareto_front", Status, SherdRefinement_p, ctypes.POINTER(SherdParetoPoint),
          ctypes.c_size_t, c_size_t_p)
+_declare("sherd_refinement_pareto_plot_svg", Status, SherdRefinement_p, ctypes.POINTER(SherdBuffer_p))
 _declare("sherd_refinement_free", None, SherdRefinement_p)
 _declare("sherd_measure", Status, SherdMesh_p, SherdAxis_p, SherdOptions_p, ctypes.POINTER(SherdMeasurements),
          ctypes.POINTER(SherdBuffer_p))

@@ -134,6 +134,9 @@ class Refinement:
     pareto_front: np.ndarray
     report: dict
     flagged: bool = False
+    pareto_plot_svg: str = ""
+    """The Pareto front drawn as an SVG plot (the chosen solution circled); empty unless
+    the criterion is Pareto."""
     """The refinement doubts its axis (the skins barely fix its position):
     ``report["flag_reason"]`` says how little; :func:`measure`'s intervals say how far off
     it may be."""
@@ -211,10 +214,15 @@ def refine(mesh, axis, *, criterion="auto", surface="both", section_count=0, sea
         check(c.lib.sherd_refinement_pareto_front(handle, points, summary.pareto_point_count, ctypes.byref(count)))
         front = np.array([[p.tilt_x_deg, p.tilt_y_deg, p.centre_dispersion_mm2, p.circle_residual_mm2]
                           for p in points[:count.value]], dtype=np.float64).reshape(-1, 4)
+        plot = ""
+        if count.value:
+            svg = c.SherdBuffer_p()
+            check(c.lib.sherd_refinement_pareto_plot_svg(handle, ctypes.byref(svg)))
+            plot = take_buffer(svg).decode("utf-8")
         return Refinement(Axis.from_c(refined), _CRITERION_NAMES.get(summary.criterion, str(summary.criterion)),
                           _SURFACE_NAMES.get(summary.surface, str(summary.surface)), summary.iterations,
                           summary.start_residual_mm, summary.residual_mm, summary.tilt_deg, summary.shift_mm,
-                          summary.section_count, front, take_json(report), bool(summary.flagged))
+                          summary.section_count, front, take_json(report), bool(summary.flagged), plot)
     finally:
         c.lib.sherd_refinement_free(handle)
 

@@ -9,7 +9,6 @@ use clap::Args;
 
 use sherd::mesh::atomic::write_bytes_atomically;
 use sherd::pipeline::{self, SherdRecord, STATUS_ERROR};
-use sherd::refine::pareto::front_svg;
 
 use crate::common::{AnalysisArgs, RefineChoice};
 
@@ -57,12 +56,13 @@ pub fn run(args: OrientArgs) -> Result<ExitCode, String> {
         return Err(record.error.unwrap_or_default());
     }
     if let (Some(path), Ok(analysis)) = (&args.pareto_plot, &analysis) {
-        let refinement = analysis.refinement.as_ref();
-        let front = refinement.and_then(|r| r.pareto_front.as_deref()).unwrap_or_default();
-        if front.is_empty() {
-            return Err(format!("{}: no Pareto front to plot: {}", args.scan.display(), record.reason.as_deref().unwrap_or("the refinement did not run")));
-        }
-        let svg = front_svg(front, refinement.and_then(|r| r.pareto_chosen.as_ref()));
+        let Some(svg) = analysis.refinement.as_ref().and_then(|r| r.pareto_plot_svg()) else {
+            return Err(format!(
+                "{}: no Pareto front to plot: {}",
+                args.scan.display(),
+                record.reason.as_deref().unwrap_or("the refinement did not run")
+            ));
+        };
         write_bytes_atomically(path, svg.as_bytes()).map_err(|e| format!("{}: {e}", path.display()))?;
     }
     if args.json {
