@@ -252,11 +252,15 @@ fn orient_takes_the_pareto_choice_and_the_tangent_planes_options() {
     assert!(angle_deg(reference, truth) < 3.0);
     let geometric = direction(&["--refine", "pareto", "--circle-fit", "geometric"]);
     assert!(angle_deg(geometric, truth) < 5.0);
+    let strict = direction(&["--refine", "pareto", "--pareto-section-limits", "40,20"]);
+    let default = direction(&["--refine", "pareto"]);
+    assert!(angle_deg(strict, default) > 1e-9, "stricter section limits changed nothing");
 
     for (flag, value, named) in [
         ("--profile-method", "polynomial:0", "polynomial:0"),
         ("--profile-method", "legendre:4", "legendre:4"),
         ("--circle-fit", "hyper", "hyper"),
+        ("--pareto-section-limits", "2,3", "2,3"),
         ("--pareto-choice", "mean-of-best:0", "mean-of-best:0"),
         ("--pareto-choice", "median", "median"),
         ("--tangent-tolerance", "-1", "-1"),

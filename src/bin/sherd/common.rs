@@ -103,6 +103,16 @@ fn parse_profile_method(text: &str) -> Result<ProfileMethod, String> {
     method.validated().map_err(|e| format!("{text:?}: {e}"))
 }
 
+/// "POINTS,DEG" as the Pareto criterion's section limits (fewest points, smallest arc).
+fn parse_section_limits(text: &str) -> Result<(usize, f64), String> {
+    let wrong = || format!("{text:?} is not POINTS,DEG (at least 3 points, an arc of 0 to 360 degrees)");
+    let (points, degrees) = text.split_once(',').ok_or_else(wrong)?;
+    match (points.trim().parse::<usize>(), degrees.trim().parse::<f64>()) {
+        (Ok(points), Ok(degrees)) if points >= 3 && (0.0..=360.0).contains(&degrees) => Ok((points, degrees)),
+        _ => Err(wrong()),
+    }
+}
+
 /// A finite positive number of millimetres.
 fn parse_positive_mm(text: &str) -> Result<f64, String> {
     match text.parse::<f64>() {
@@ -145,6 +155,10 @@ pub struct AnalysisArgs {
     /// The circle fit of each horizontal section in the Pareto criterion.
     #[arg(long, value_enum, default_value = "taubin")]
     pub circle_fit: CircleFitChoice,
+    /// The Pareto criterion's limits per horizontal section: fewer points or a smaller arc
+    /// (degrees) and the section is left out.
+    #[arg(long, value_name = "POINTS,DEG", default_value = "10,3", value_parser = parse_section_limits)]
+    pub pareto_section_limits: (usize, f64),
     /// Units of the scan. Without it, the unit a comment of the file declares ("comment
     /// units cm" in a PLY header, "# units cm" in an OBJ), else millimetres (what
     /// scanners mostly write). Given, it overrides the file.
@@ -192,6 +206,8 @@ impl AnalysisArgs {
                         CircleFitChoice::Taubin => CircleFitMethod::Taubin,
                         CircleFitChoice::Geometric => CircleFitMethod::Geometric,
                     },
+                    min_section_points: self.pareto_section_limits.0,
+                    min_sector_angle_deg: self.pareto_section_limits.1,
                     ..defaults.pareto.clone()
                 },
                 profile_method: self.profile_method,
