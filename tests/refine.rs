@@ -215,6 +215,17 @@ fn bad_options_are_reported() {
     assert!(refine(&moved, &nan, &RefineOptions::default()).unwrap_err().to_string().contains("not finite"));
     let tiny = Mesh::new(vec![Point::origin(); 3], vec![]);
     assert!(refine(&tiny, &start, &RefineOptions::default()).is_err());
+    // The Pareto and profile settings are checked once, in the library, for every host.
+    let mut pareto = RefineOptions { criterion: Criterion::Pareto, ..Default::default() };
+    pareto.pareto.min_section_points = 2;
+    assert!(refine(&moved, &start, &pareto).unwrap_err().to_string().contains("min_points"));
+    pareto.pareto = sherd::refine::pareto::ParetoOptions {
+        choice: sherd::refine::pareto::ParetoChoice::MeanOfBest(0),
+        ..Default::default()
+    };
+    assert!(refine(&moved, &start, &pareto).unwrap_err().to_string().contains("at least 1"));
+    let polynomial = RefineOptions { profile_method: sherd::refine::profile::ProfileMethod::Polynomial { degree: 0 }, ..Default::default() };
+    assert!(refine(&moved, &start, &polynomial).unwrap_err().to_string().contains("degree"));
 }
 
 /// The refine bench's sherd (synthetic rim seed 7, 20k faces): a rounded lip at this

@@ -12,7 +12,8 @@ use crate::draw::{DrawOptions, Placement, RegularityKind, SectionFill, Style};
 use crate::mesh::repair::RepairOptions;
 use crate::orient::{ManualOptions, OrientOptions};
 use crate::profile::measure::MeasureOptions;
-use crate::refine::RefineOptions;
+use crate::refine::pareto::ParetoOptions;
+use crate::refine::{RefineOptions, MAX_SEARCH_BOUND_DEG};
 
 /// Creates a builder holding `T::default()`.
 unsafe fn new_builder<B>(out: *mut *mut B, builder: B) -> FfiResult {
@@ -357,8 +358,8 @@ pub unsafe extern "C" fn sherd_refine_options_set_section_count(options: *mut Sh
 pub unsafe extern "C" fn sherd_refine_options_set_search_bound_deg(options: *mut SherdRefineOptions, bound_deg: f64) -> SherdStatus {
     assign("sherd_refine_options_set_search_bound_deg", options, |o| &mut o.search_bound_deg, || {
         match finite_positive(bound_deg, "bound_deg")? {
-            bound if bound <= 45.0 => Ok(bound),
-            bound => Err(Failure::invalid(format!("`bound_deg` must be at most 45, got {bound}"))),
+            bound if bound <= MAX_SEARCH_BOUND_DEG => Ok(bound),
+            bound => Err(Failure::invalid(format!("`bound_deg` must be at most {MAX_SEARCH_BOUND_DEG}, got {bound}"))),
         }
     })
 }
@@ -371,7 +372,11 @@ pub unsafe extern "C" fn sherd_refine_options_set_search_bound_deg(options: *mut
 /// `options` must be a live handle.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_refine_options_set_pareto_choice(options: *mut SherdRefineOptions, choice: u32, count: usize) -> SherdStatus {
-    assign("sherd_refine_options_set_pareto_choice", options, |o| &mut o.pareto.choice, || SherdParetoChoice::parse(choice, count))
+    set("sherd_refine_options_set_pareto_choice", options, |builder| {
+        let pareto = &mut builder.options_mut().pareto;
+        *pareto = ParetoOptions { choice: SherdParetoChoice::parse(choice, count)?, ..pareto.clone() }.validated()?;
+        Ok(())
+    })
 }
 
 /// The Pareto criterion's limits per horizontal section (Eq. 3-4): sections with fewer
@@ -387,15 +392,9 @@ pub unsafe extern "C" fn sherd_refine_options_set_pareto_section_limits(
     min_sector_deg: f64,
 ) -> SherdStatus {
     set("sherd_refine_options_set_pareto_section_limits", options, |builder| {
-        if min_points < 3 {
-            return Err(Failure::invalid(format!("`min_points` must be at least 3 (a circle needs three), got {min_points}")));
-        }
-        if !(min_sector_deg.is_finite() && (0.0..=360.0).contains(&min_sector_deg)) {
-            return Err(Failure::invalid(format!("`min_sector_deg` must be in [0, 360], got {min_sector_deg}")));
-        }
         let pareto = &mut builder.options_mut().pareto;
-        pareto.min_section_points = min_points;
-        pareto.min_sector_angle_deg = min_sector_deg;
+        *pareto = ParetoOptions { min_section_points: min_points, min_sector_angle_deg: min_sector_deg, ..pareto.clone() }
+            .validated()?;
         Ok(())
     })
 }

@@ -79,8 +79,7 @@ impl SherdParetoChoice {
             0 => ParetoChoice::Knee,
             1 => ParetoChoice::Centres,
             2 => ParetoChoice::Residuals,
-            3 if count >= 1 => ParetoChoice::MeanOfBest(count),
-            3 => return Err(Failure::invalid("`count` must be at least 1 for SHERD_PARETO_CHOICE_MEAN_OF_BEST")),
+            3 => ParetoChoice::MeanOfBest(count),
             other => return Err(Failure::invalid(format!("`choice` {other} is not a SHERD_PARETO_CHOICE_* value (0 to 3)"))),
         })
     }

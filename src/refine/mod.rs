@@ -183,6 +183,10 @@ impl Refinement {
     }
 }
 
+/// Largest search bound a refinement accepts, degrees: past it the tilts leave the
+/// neighbourhood the pre-orientation vouches for.
+pub const MAX_SEARCH_BOUND_DEG: f64 = 45.0;
+
 /// Most horizontal sections a refinement accepts: a section every 0.1 mm of a 1 m sherd.
 /// Each section is a pass over the skins per cost evaluation, so the bound keeps a
 /// hostile option value from asking for unbounded time and memory.
@@ -192,9 +196,9 @@ pub(crate) fn validate(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Res
     if !axis.point.iter().chain(axis.direction.iter()).all(|c| c.is_finite()) {
         return Err(Error::InvalidArgument(format!("start axis is not finite: {:?}", axis.record())));
     }
-    if !(options.search_bound_deg > 0.0 && options.search_bound_deg <= 45.0) {
+    if !(options.search_bound_deg > 0.0 && options.search_bound_deg <= MAX_SEARCH_BOUND_DEG) {
         return Err(Error::InvalidArgument(format!(
-            "search_bound_deg must be in (0, 45], got {}",
+            "search_bound_deg must be in (0, {MAX_SEARCH_BOUND_DEG}], got {}",
             options.search_bound_deg
         )));
     }
@@ -208,6 +212,7 @@ pub(crate) fn validate(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Res
         return Err(Error::InvalidArgument("section_count must be at least 1".into()));
     }
     options.profile_method.validated()?;
+    options.pareto.clone().validated()?;
     if let Some(count) = options.section_count.filter(|&c| c > MAX_SECTION_COUNT) {
         return Err(Error::InvalidArgument(format!("section_count must be at most {MAX_SECTION_COUNT}, got {count}")));
     }

@@ -53,6 +53,24 @@ impl Default for ParetoOptions {
     }
 }
 
+impl ParetoOptions {
+    /// These options if a search can use them: at least 3 points per section (a circle
+    /// needs three), an arc limit of 0 to 360 degrees, the mean of at least one solution;
+    /// else why not.
+    pub fn validated(self) -> crate::Result<Self> {
+        let problem = if self.min_section_points < 3 {
+            format!("the Pareto criterion's min_points must be at least 3 (a circle needs three), got {}", self.min_section_points)
+        } else if !(0.0..=360.0).contains(&self.min_sector_angle_deg) {
+            format!("the Pareto criterion's min_sector_deg must be in [0, 360], got {}", self.min_sector_angle_deg)
+        } else if self.choice == ParetoChoice::MeanOfBest(0) {
+            "the Pareto criterion's mean of the best needs a count of at least 1".to_string()
+        } else {
+            return Ok(self);
+        };
+        Err(crate::Error::InvalidArgument(problem))
+    }
+}
+
 /// How the solution is picked from the front.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub enum ParetoChoice {

@@ -337,10 +337,10 @@ static void test_refine_measure_draw_misuse(void) {
     CHECK_MESSAGE("SHERD_PARETO_CHOICE_");
     CHECK_STATUS(sherd_refine_options_set_pareto_choice(refine_options, SHERD_PARETO_CHOICE_MEAN_OF_BEST, 0),
                  SHERD_STATUS_INVALID_ARGUMENT);
-    CHECK_MESSAGE("`count` must be at least 1");
+    CHECK_MESSAGE("count of at least 1");
     CHECK_OK(sherd_refine_options_set_pareto_choice(refine_options, SHERD_PARETO_CHOICE_MEAN_OF_BEST, 2));
     CHECK_STATUS(sherd_refine_options_set_pareto_section_limits(refine_options, 2, 3.0), SHERD_STATUS_INVALID_ARGUMENT);
-    CHECK_MESSAGE("`min_points` must be at least 3");
+    CHECK_MESSAGE("min_points must be at least 3");
     CHECK_STATUS(sherd_refine_options_set_pareto_section_limits(refine_options, 10, NAN), SHERD_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(sherd_refine_options_set_pareto_section_limits(refine_options, 10, 361.0), SHERD_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(sherd_refine_options_set_tangent_tolerance_mm(refine_options, 0.0), SHERD_STATUS_INVALID_ARGUMENT);

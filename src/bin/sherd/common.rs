@@ -81,7 +81,10 @@ fn parse_pareto_choice(text: &str) -> Result<ParetoChoice, String> {
         "centres" => Ok(ParetoChoice::Centres),
         "residuals" => Ok(ParetoChoice::Residuals),
         _ => match text.strip_prefix("mean-of-best:").map(str::parse::<usize>) {
-            Some(Ok(count)) if count >= 1 => Ok(ParetoChoice::MeanOfBest(count)),
+            Some(Ok(count)) => ParetoOptions { choice: ParetoChoice::MeanOfBest(count), ..Default::default() }
+                .validated()
+                .map(|options| options.choice)
+                .map_err(|e| format!("{text:?}: {e}")),
             _ => Err(format!("{text:?} is not knee, centres, residuals or mean-of-best:N (N at least 1)")),
         },
     }
@@ -107,10 +110,11 @@ fn parse_profile_method(text: &str) -> Result<ProfileMethod, String> {
 fn parse_section_limits(text: &str) -> Result<(usize, f64), String> {
     let wrong = || format!("{text:?} is not POINTS,DEG (at least 3 points, an arc of 0 to 360 degrees)");
     let (points, degrees) = text.split_once(',').ok_or_else(wrong)?;
-    match (points.trim().parse::<usize>(), degrees.trim().parse::<f64>()) {
-        (Ok(points), Ok(degrees)) if points >= 3 && (0.0..=360.0).contains(&degrees) => Ok((points, degrees)),
-        _ => Err(wrong()),
-    }
+    let (Ok(points), Ok(degrees)) = (points.trim().parse::<usize>(), degrees.trim().parse::<f64>()) else {
+        return Err(wrong());
+    };
+    let limits = ParetoOptions { min_section_points: points, min_sector_angle_deg: degrees, ..Default::default() };
+    limits.validated().map(|_| (points, degrees)).map_err(|e| format!("{text:?}: {e}"))
 }
 
 /// A finite positive number of millimetres.
