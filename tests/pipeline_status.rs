@@ -34,6 +34,16 @@ fn an_axis_the_bootstrap_doubts_is_not_called_ok() {
         if record.status == STATUS_OK {
             ok_offsets_mm.push(off_mm);
         }
+        if index == 3 {
+            // Eq. 7 tipped this rim 3.4 degrees to push a damaged section out of epsilon,
+            // and the record called it ok, 3.0 mm off. Levelled by the plane of its level
+            // extremes it is within half a degree; where it lies the skins do not fix
+            // (the circles criterion's placement fails), and the record says so.
+            let angle = analysis.axis().line_angle_to_deg(&fragment.truth.axis);
+            assert!(angle < 0.5, "{angle:.2} deg: {context}");
+            assert_eq!(record.status, STATUS_AXIS_UNCERTAIN, "{context}");
+            assert!(record.reason.as_deref().is_some_and(|r| r.contains("95% position interval")), "{context}");
+        }
         if index == 7 {
             // The refinement placed this base's axis where the skins barely fix it, 16.6 mm
             // off the truth; the resampled sections slide it along the radius, and the
@@ -45,7 +55,8 @@ fn an_axis_the_bootstrap_doubts_is_not_called_ok() {
     }
     assert!(uncertain >= 3, "{uncertain} axes uncertain");
     // Before the doubts reached the record, four axes 4.4-16.6 mm off were among this
-    // vessel's ok rows; now those it calls ok are all within 4 mm.
-    assert!(ok_offsets_mm.len() >= 3, "ok rows' offsets {ok_offsets_mm:?} mm");
+    // vessel's ok rows; now those it calls ok are all within 4 mm (fragment 3, above, was
+    // the third).
+    assert!(ok_offsets_mm.len() >= 2, "ok rows' offsets {ok_offsets_mm:?} mm");
     assert!(ok_offsets_mm.iter().all(|&off| off < 4.0), "ok rows' offsets {ok_offsets_mm:?} mm");
 }

@@ -183,6 +183,10 @@ impl Refinement {
     }
 }
 
+/// The flag of an automatic refinement that kept its start because nothing fixes a better
+/// axis.
+const NOTHING_TO_REFINE_BY: &str = "nothing to refine the axis by: no level rim or base, and no horizontal section cuts a wall skin (a floor, or the underside of a shallow dish); the axis is the start's";
+
 /// Largest search bound a refinement accepts, degrees: past it the tilts leave the
 /// neighbourhood the pre-orientation vouches for.
 pub const MAX_SEARCH_BOUND_DEG: f64 = 45.0;
@@ -253,14 +257,22 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
     let (parameters, start_cost, cost, iterations, kept_start) = match method {
         Criterion::Circles | Criterion::Auto => {
             let objective = circles::CirclesObjective::new(&surface);
-            let result = run_guarded(&objective, start, &settings)?;
-            let curvature = radial_curvature(&objective, &result.0);
-            if curvature < MIN_PLACING_CURVATURE {
-                flag = Some(format!(
-                    "the skins barely fix the axis's position: moving it {PLACING_PROBE_MM} mm towards the fragment raises Eq. 2 {curvature:.1}-fold (at least {MIN_PLACING_CURVATURE} wanted)"
-                ));
+            let start_cost = objective.value(&start);
+            if options.criterion == Criterion::Auto && !start_cost.is_finite() {
+                // Asked to choose, `refine` says the fragment gives it nothing to work
+                // with rather than failing: the caller keeps the pre-orientation, flagged.
+                flag = Some(NOTHING_TO_REFINE_BY.to_string());
+                (start, start_cost, start_cost, 0, true)
+            } else {
+                let result = run_guarded(&objective, start, &settings)?;
+                let curvature = radial_curvature(&objective, &result.0);
+                if curvature < MIN_PLACING_CURVATURE {
+                    flag = Some(format!(
+                        "the skins barely fix the axis's position: moving it {PLACING_PROBE_MM} mm towards the fragment raises Eq. 2 {curvature:.1}-fold (at least {MIN_PLACING_CURVATURE} wanted)"
+                    ));
+                }
+                result
             }
-            result
         }
         Criterion::Profile => {
             let objective = profile::ProfileObjective { surface: &surface, method: options.profile_method };
@@ -276,15 +288,19 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                 // The detection levelled the edge from this start with these settings.
                 let levelled = match levelled_by_detection {
                     Some(levelled) => levelled,
-                    None => tangent::level_edge(
-                        &surface,
-                        edge,
-                        options.tangent_tolerance_mm,
-                        options.vertical_section_count,
-                        start,
-                        &settings,
-                        None,
-                    )?,
+                    None => {
+                        let levelled = tangent::level_edge(
+                            &surface,
+                            edge,
+                            options.tangent_tolerance_mm,
+                            options.vertical_section_count,
+                            start,
+                            &settings,
+                            None,
+                        )?;
+                        let at_levelled = tangent::edge_evidence(&surface, edge, EDGE_LEVEL_TOLERANCE_MM, options.vertical_section_count, &levelled.parameters);
+                        flatter_by_plane(&surface, options, edge, &levelled, &at_levelled).map_or(levelled, |(_, polished)| polished)
+                    }
                 };
                 // Never worse than the start by Eq. 7 itself.
                 let (mut tilted, cost, iterations, kept) = if levelled.value <= tangent_start || !tangent_start.is_finite() {
@@ -596,11 +612,28 @@ fn detect_edges_levelled(
             };
             let levelled = minimum.map_or([0.0; 4], |m| m.parameters);
             let min_level_fraction = min_level_fraction[usize::from(edge == Edge::Base)];
-            let passes = |e: &tangent::EdgeEvidence| e.level_fraction >= min_level_fraction && e.spread_mm <= EDGE_MAX_SPREAD_MM;
+            // A base that sags is still a base where a flat underside holds its plane.
+            let underside_holds = || edge == Edge::Base && tangent::flat_underside(surface, &levelled).is_some();
+            let passes = |e: &tangent::EdgeEvidence| {
+                e.level_fraction >= min_level_fraction
+                    && e.spread_mm <= EDGE_MAX_SPREAD_MM
+                    && (e.sag_mm.abs() <= EDGE_MAX_SAG_MM || underside_holds())
+            };
             let evidence = |parameters: &AxisParameters| {
                 tangent::edge_evidence(surface, edge, EDGE_LEVEL_TOLERANCE_MM, options.vertical_section_count, parameters)
             };
             let at_levelled = evidence(&levelled);
+            // A rim whose levelling passes but for its sag is taken turned onto the plane
+            // of its level extremes where that flattens it and passes. Not one that fails
+            // the level test otherwise: turned onto its own extremes, a body sherd's break
+            // line passed as a rim (synthetic_sherd 30 went 14 degrees off).
+            let passes_but_for_sag = passes(&tangent::EdgeEvidence { sag_mm: 0.0, ..at_levelled });
+            let relevelled = minimum.as_ref().filter(|_| passes_but_for_sag).and_then(|m| {
+                flatter_by_plane(surface, options, edge, m, &at_levelled).filter(|(at_polished, _)| passes(at_polished))
+            });
+            if let Some((at_polished, polished)) = relevelled {
+                return Some((at_polished, Some(polished)));
+            }
             if passes(&at_levelled) {
                 return Some((at_levelled, minimum));
             }
@@ -617,6 +650,24 @@ fn detect_edges_levelled(
         .collect()
 }
 
+/// A rim's levelling `levelled` (with its evidence `at_levelled`) turned onto the plane of
+/// its level extremes ([`tangent::level_by_plane`]), with the evidence there, when that
+/// leaves its extremes sagging less; `None` for a base, or when it does not.
+fn flatter_by_plane(
+    surface: &PreparedSurface,
+    options: &RefineOptions,
+    edge: Edge,
+    levelled: &Minimum,
+    at_levelled: &tangent::EdgeEvidence,
+) -> Option<(tangent::EdgeEvidence, Minimum)> {
+    if edge != Edge::Rim {
+        return None;
+    }
+    let polished = tangent::level_by_plane(surface, edge, options.tangent_tolerance_mm, options.vertical_section_count, levelled)?;
+    let at_polished = tangent::edge_evidence(surface, edge, EDGE_LEVEL_TOLERANCE_MM, options.vertical_section_count, &polished.parameters);
+    (at_polished.sag_mm.abs() < at_levelled.sag_mm.abs()).then_some((at_polished, polished))
+}
+
 /// Horizontal sections with points the circles criterion needs to place a levelled axis.
 const MIN_PLACING_SECTIONS: usize = 6;
 
@@ -626,5 +677,9 @@ pub const EDGE_LEVEL_FRACTION: f64 = 0.6;
 /// ...and their median absolute deviation is at most this, mm. On the synthetic corpus
 /// levelled rims and bases spread by 0.01-0.02 mm, levelled break lines by 0.1 mm or more.
 const EDGE_MAX_SPREAD_MM: f64 = 0.08;
+/// ...and their ends sag from the plane by at most this, mm ([`tangent::edge_sag_mm`]),
+/// unless a flat underside holds the base's plane: a rounded underside rocks, and Eq. 7
+/// levelled such bases 1.5-12 degrees off (BENCHMARKS.md, session 16).
+const EDGE_MAX_SAG_MM: f64 = 0.15;
 /// Height tolerance of the level test, millimetres.
 const EDGE_LEVEL_TOLERANCE_MM: f64 = 1.0;
