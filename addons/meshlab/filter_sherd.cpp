@@ -35,6 +35,9 @@ const QStringList criteria = {"Circles", "Pareto", "Profile", "Tangent", "Auto"}
 const QStringList surfaces = {"Inner", "Outer", "Both"};
 const QStringList paretoChoices = {"Knee", "Best centres", "Best residuals", "Mean of the best"};
 const QStringList edges = {"Detect", "Rim", "Base"};
+// In the order of the SHERD_CIRCLE_FIT_* and SHERD_PROFILE_METHOD_* values.
+const QStringList circleFits = {"Kasa", "Pratt", "Taubin", "Geometric"};
+const QStringList profileMethods = {"Reference profile (Eq. 5)", "Polynomial (Eq. 6)", "Spline (Eq. 6)"};
 const QStringList formats = {"SVG", "EPS", "PDF", "PNG"};
 const QStringList formatExtensions = {"svg", "eps", "pdf", "png"};
 const QStringList regularityMaps = {"Distance to the axis", "Distance to the ideal vessel"};
@@ -298,6 +301,17 @@ std::map<std::string, QVariant> refine(MeshModel& model, const RichParameterList
 	                                                    std::size_t(meanCount)));
 	sherd::check(sherd_refine_options_set_edge(options.get(), std::uint32_t(parameters.getEnum("edge"))));
 	sherd::check(sherd_refine_options_set_tangent_tolerance_mm(options.get(), double(parameters.getFloat("tangent_tolerance_mm"))));
+	int minPoints = parameters.getInt("pareto_min_points");
+	if (minPoints < 0) throw MLException(QString("Sherd: pareto_min_points %1 is negative.").arg(minPoints));
+	sherd::check(sherd_refine_options_set_pareto_section_limits(options.get(), std::size_t(minPoints),
+	                                                            double(parameters.getFloat("pareto_min_arc_deg"))));
+	sherd::check(sherd_refine_options_set_circle_fit(options.get(), std::uint32_t(parameters.getEnum("circle_fit"))));
+	// Each form of the profile criterion has its own parameter; the form chosen takes its own.
+	std::uint32_t profileMethod = std::uint32_t(parameters.getEnum("profile_method"));
+	double profileParameter = profileMethod == SHERD_PROFILE_METHOD_REFERENCE ? double(parameters.getInt("profile_sections"))
+		: profileMethod == SHERD_PROFILE_METHOD_POLYNOMIAL ? double(parameters.getInt("profile_degree"))
+		: double(parameters.getFloat("profile_knot_spacing_mm"));
+	sherd::check(sherd_refine_options_set_profile_method(options.get(), profileMethod, profileParameter));
 	QString plotPath = parameters.getSaveFileName("pareto_plot");
 	if (!plotPath.isEmpty() && parameters.getEnum("criterion") != SHERD_CRITERION_PARETO)
 		throw MLException("Sherd: pareto_plot draws the Pareto criterion's front: choose the Pareto criterion or leave "
@@ -674,6 +688,27 @@ RichParameterList FilterSherdPlugin::initParameterList(const QAction* action, co
 		list.addParam(RichFloat("tangent_tolerance_mm", 3, "Tangent plane's epsilon (mm)",
 		                        "Eq. 7's tolerance: a vertical section whose extreme lies farther than this below "
 		                        "the rim's top (above the base's bottom) is taken for damaged and left out."));
+		list.addParam(RichInt("pareto_min_points", 10, "Pareto: fewest points per section",
+		                      "With the Pareto criterion: a horizontal section with fewer points is left out "
+		                      "(at least 3: a circle needs three)."));
+		list.addParam(RichFloat("pareto_min_arc_deg", 3, "Pareto: smallest arc (deg)",
+		                        "With the Pareto criterion: a horizontal section spanning a smaller arc about the "
+		                        "axis is left out (0 to 360)."));
+		list.addParam(RichEnum("circle_fit", SHERD_CIRCLE_FIT_TAUBIN, circleFits, "Pareto: circle fit",
+		                       "With the Pareto criterion: how each section's circle is fitted (Chernov): Taubin "
+		                       "is nearly unbiased on short arcs, Kasa pulls them towards small circles, "
+		                       "Geometric refines Taubin's circle by least squares."));
+		list.addParam(RichEnum("profile_method", SHERD_PROFILE_METHOD_SPLINE, profileMethods, "Profile: form",
+		                       "With the profile criterion: the distance to the longest vertical section (Eq. 5), "
+		                       "or the residuals of a profile r(z) fitted per skin (Eq. 6), a polynomial or a "
+		                       "cubic spline (the default: it follows a lip a polynomial cannot)."));
+		list.addParam(RichInt("profile_sections", 12, "Profile: vertical sections",
+		                      "With the reference profile (Eq. 5): the number of vertical sections (2 to 1000)."));
+		list.addParam(RichInt("profile_degree", 6, "Profile: polynomial degree",
+		                      "With the polynomial profile (Eq. 6): its degree (1 to 20)."));
+		list.addParam(RichFloat("profile_knot_spacing_mm", 1.5, "Profile: knot spacing (mm)",
+		                        "With the spline profile (Eq. 6): the distance between its knots along the height "
+		                        "(0.1 to 1000 mm)."));
 		addApplyToParameter(list);
 		break;
 	case FP_SHERD_MEASURE:

@@ -282,17 +282,28 @@ def test_synthetic_sherd(vendored, operators):
     # axis is the one sherd.refine gives from the same stored axis with the same options.
     for options in (dict(criterion="pareto", pareto_choice="centres"),
                     dict(criterion="pareto", pareto_choice="mean_of_best", pareto_mean_count=3),
+                    dict(criterion="pareto", pareto_min_points=40, pareto_min_arc_deg=20.0, circle_fit="geometric"),
+                    dict(criterion="profile", profile_form="polynomial", profile_degree=4),
+                    dict(criterion="profile", profile_form="reference", profile_sections=8),
                     dict(criterion="tangent", edge="rim", tangent_tolerance_mm=1.0)):
         before = operators.stored_axis(obj)
         positions, triangles, _ = operators.world_arrays(obj)
         direct_options = dict(options)
         if direct_options.get("pareto_choice") == "mean_of_best":
             direct_options["pareto_choice"] = ("mean_of_best", direct_options.pop("pareto_mean_count"))
+        if "pareto_min_points" in direct_options:
+            direct_options["pareto_section_limits"] = (direct_options.pop("pareto_min_points"),
+                                                       direct_options.pop("pareto_min_arc_deg"))
+        if "profile_form" in direct_options:
+            form = direct_options.pop("profile_form")
+            parameter = direct_options.pop({"polynomial": "profile_degree", "reference": "profile_sections"}[form])
+            direct_options["profile_method"] = (form, parameter)
         direct = vendored.refine(vendored.Mesh.from_arrays(positions, triangles), before, **direct_options)
         assert bpy.ops.sherd.refine(surface="both", **options) == {'FINISHED'}, operators.REPORTS[-1:]
         assert np.allclose(obj["sherd_axis_direction"], direct.axis.direction, atol=1e-9), options
         assert obj["sherd_axis_source"].startswith(f"refined ({options['criterion']}"), obj["sherd_axis_source"]
-    print("  the Pareto solution, the tangent plane's edge and epsilon reach the library")
+    print("  the Pareto solution, section limits and circle fit, the profile form, the tangent plane's edge and"
+          " epsilon reach the library")
     assert bpy.ops.sherd.refine(criterion="circles", surface="outer") == {'FINISHED'}, operators.REPORTS[-1:]
     assert obj["sherd_axis_source"].startswith("refined (circles, outer")
     assert len(obj["sherd_pareto_front"]) == 0 and "sherd_pareto_plot_svg" not in obj

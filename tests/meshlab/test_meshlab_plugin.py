@@ -232,6 +232,26 @@ def test_refine_takes_the_pareto_solution_and_the_tangent_planes_options(rim_she
     assert 0 <= report["tilt_deg"] <= 10.0
 
 
+def test_refine_takes_the_pareto_sections_and_the_profile_form(rim_sherd):
+    scan, _ = rim_sherd
+
+    def tilt(**parameters):
+        ms = load(scan)
+        ms.apply_filter("sherd_orient", refine=False)
+        return ms.apply_filter("sherd_refine", start_axis=1, **parameters)["tilt_deg"]
+
+    # The profile criterion (2) as a spline and as a quartic, which misses the lip: the C
+    # pipeline test measures them 0.5 and 9.5 degrees from the truth on a rim.
+    spline, quartic = tilt(criterion=2), tilt(criterion=2, profile_method=1, profile_degree=4)
+    assert spline != quartic, (spline, quartic)
+    assert 0 <= tilt(criterion=2, profile_method=0, profile_sections=8) <= 10.0
+    # The Pareto criterion (1) with the geometric circle fit and other section limits: the
+    # limits reach the library, which names them when no section of this small rim meets them.
+    assert 0 <= tilt(criterion=1, pareto_min_points=12, pareto_min_arc_deg=5.0, circle_fit=3) <= 10.0
+    with pytest.raises(pymeshlab.PyMeshLabException, match="at least 40 points and 20 degrees of arc"):
+        tilt(criterion=1, pareto_min_points=40, pareto_min_arc_deg=20.0)
+
+
 @pytest.mark.parametrize("fmt, suffix", [(0, "svg"), (2, "pdf"), (3, "png")])
 def test_draw_writes_the_illustration(rim_sherd, tmp_path, fmt, suffix):
     scan, _ = rim_sherd
@@ -251,6 +271,10 @@ def test_draw_writes_the_illustration(rim_sherd, tmp_path, fmt, suffix):
     ("sherd_refine", dict(search_bound_deg=95.0), "search_bound_deg"),
     ("sherd_refine", dict(pareto_choice=3, pareto_mean_count=0), "at least 1"),
     ("sherd_refine", dict(tangent_tolerance_mm=-1.0), "tolerance_mm"),
+    ("sherd_refine", dict(pareto_min_points=2), "at least 3"),
+    ("sherd_refine", dict(pareto_min_arc_deg=400.0), "min_sector_deg"),
+    ("sherd_refine", dict(profile_method=1, profile_degree=0), "degree"),
+    ("sherd_refine", dict(profile_method=2, profile_knot_spacing_mm=0.0), "knot spacing"),
     ("sherd_refine", dict(criterion=0, pareto_plot="front.svg"), "Pareto criterion"),
     ("sherd_measure", dict(confidence=1.5), "confidence"),
     ("sherd_orient", dict(method=1), "Sherd"),

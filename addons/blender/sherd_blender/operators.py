@@ -55,6 +55,17 @@ EDGE_ITEMS = [
     ("rim", "Rim", "The tangent plane on the rim's highest points"),
     ("base", "Base", "The tangent plane on the base's lowest points"),
 ]
+CIRCLE_FIT_ITEMS = [
+    ("taubin", "Taubin", "Algebraic fit, nearly unbiased on short arcs"),
+    ("geometric", "Geometric", "Least-squares distances, from Taubin's circle"),
+    ("pratt", "Pratt", "Algebraic fit"),
+    ("kasa", "Kasa", "Algebraic fit, biased towards small circles on short arcs"),
+]
+PROFILE_FORM_ITEMS = [
+    ("spline", "Spline", "Eq. 6 as a cubic spline r(z) per skin"),
+    ("polynomial", "Polynomial", "Eq. 6: a polynomial r(z) per skin"),
+    ("reference", "Reference", "Eq. 5: distance to the longest vertical section"),
+]
 
 
 class InputError(Exception):
@@ -249,7 +260,8 @@ class SHERD_OT_orient_three_points(SherdOperator, bpy.types.Operator):
 
 class SHERD_OT_refine(SherdOperator, bpy.types.Operator):
     """Refine the stored axis with the chosen criterion and surface (and, for the Pareto
-    criterion, the solution taken; for the tangent plane, its edge and epsilon)"""
+    criterion, the solution taken, its sections' limits and circle fit; for the profile
+    criterion, its form; for the tangent plane, its edge and epsilon)"""
 
     bl_idname = "sherd.refine"
     bl_label = "Refine"
@@ -260,11 +272,22 @@ class SHERD_OT_refine(SherdOperator, bpy.types.Operator):
     pareto_mean_count: bpy.props.IntProperty(name="Best averaged", default=2, min=1, max=100)
     edge: bpy.props.EnumProperty(name="Edge", items=EDGE_ITEMS, default="detect")
     tangent_tolerance_mm: bpy.props.FloatProperty(name="Epsilon (mm)", default=3.0, min=0.01, max=100.0)
+    pareto_min_points: bpy.props.IntProperty(name="Fewest points", default=10, min=3, max=100000)
+    pareto_min_arc_deg: bpy.props.FloatProperty(name="Smallest arc (deg)", default=3.0, min=0.0, max=360.0)
+    circle_fit: bpy.props.EnumProperty(name="Circle fit", items=CIRCLE_FIT_ITEMS, default="taubin")
+    profile_form: bpy.props.EnumProperty(name="Profile", items=PROFILE_FORM_ITEMS, default="spline")
+    profile_knot_spacing_mm: bpy.props.FloatProperty(name="Knots (mm)", default=1.5, min=0.1, max=1000.0)
+    profile_degree: bpy.props.IntProperty(name="Degree", default=6, min=1, max=20)
+    profile_sections: bpy.props.IntProperty(name="Vertical sections", default=12, min=2, max=1000)
 
     def run(self, context):
         choice = (self.pareto_choice, self.pareto_mean_count) if self.pareto_choice == "mean_of_best" else self.pareto_choice
+        profile_parameter = {"spline": self.profile_knot_spacing_mm, "polynomial": self.profile_degree,
+                             "reference": self.profile_sections}[self.profile_form]
         options = dict(criterion=self.criterion, surface=self.surface, pareto_choice=choice, edge=self.edge,
-                       tangent_tolerance_mm=self.tangent_tolerance_mm)
+                       tangent_tolerance_mm=self.tangent_tolerance_mm,
+                       pareto_section_limits=(self.pareto_min_points, self.pareto_min_arc_deg),
+                       circle_fit=self.circle_fit, profile_method=(self.profile_form, profile_parameter))
         obj, _, _, refinement = with_stored_axis(context, lambda mesh, axis: sherd().refine(mesh, axis, **options))
         store_axis(obj, refinement.axis, f"refined ({refinement.criterion}, {refinement.surface})")
         obj["sherd_refine_residual_mm"] = float(refinement.residual_mm)

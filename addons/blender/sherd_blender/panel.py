@@ -16,6 +16,13 @@ class SherdSettings(bpy.types.PropertyGroup):
     pareto_mean_count: bpy.props.IntProperty(name="Best averaged", default=2, min=1, max=100)
     edge: bpy.props.EnumProperty(name="Edge", items=operators.EDGE_ITEMS, default="detect")
     tangent_tolerance_mm: bpy.props.FloatProperty(name="Epsilon (mm)", default=3.0, min=0.01, max=100.0)
+    pareto_min_points: bpy.props.IntProperty(name="Fewest points", default=10, min=3, max=100000)
+    pareto_min_arc_deg: bpy.props.FloatProperty(name="Smallest arc (deg)", default=3.0, min=0.0, max=360.0)
+    circle_fit: bpy.props.EnumProperty(name="Circle fit", items=operators.CIRCLE_FIT_ITEMS, default="taubin")
+    profile_form: bpy.props.EnumProperty(name="Profile", items=operators.PROFILE_FORM_ITEMS, default="spline")
+    profile_knot_spacing_mm: bpy.props.FloatProperty(name="Knots (mm)", default=1.5, min=0.1, max=1000.0)
+    profile_degree: bpy.props.IntProperty(name="Degree", default=6, min=1, max=20)
+    profile_sections: bpy.props.IntProperty(name="Vertical sections", default=12, min=2, max=1000)
     drawing_path: bpy.props.StringProperty(name="File", subtype='FILE_PATH', default="//sherd.svg")
     drawing_style: bpy.props.EnumProperty(name="Style", items=operators.STYLE_ITEMS, options={'ENUM_FLAG'},
                                           default={"light", "occlusion"})
@@ -27,6 +34,14 @@ class SherdSettings(bpy.types.PropertyGroup):
 
 #: Points of the Pareto front listed in the panel (all are in the custom property).
 PARETO_ROWS = 6
+
+#: The settings the Refine button passes on to its operator.
+REFINE_SETTINGS = ("criterion", "surface", "pareto_choice", "pareto_mean_count", "edge", "tangent_tolerance_mm",
+                   "pareto_min_points", "pareto_min_arc_deg", "circle_fit", "profile_form", "profile_knot_spacing_mm",
+                   "profile_degree", "profile_sections")
+
+#: The setting of each profile form's one parameter.
+PROFILE_PARAMETERS = {"spline": "profile_knot_spacing_mm", "polynomial": "profile_degree", "reference": "profile_sections"}
 
 
 def _row(layout, label, value, unit, label_share=0.5):
@@ -69,12 +84,19 @@ class SHERD_PT_panel(bpy.types.Panel):
             box.prop(settings, "pareto_choice")
             if settings.pareto_choice == "mean_of_best":
                 box.prop(settings, "pareto_mean_count")
+            box.prop(settings, "pareto_min_points")
+            box.prop(settings, "pareto_min_arc_deg")
+            box.prop(settings, "circle_fit")
+        if settings.criterion == "profile":
+            row = box.row(align=True)
+            row.prop(settings, "profile_form", text="")
+            row.prop(settings, PROFILE_PARAMETERS[settings.profile_form])
         if settings.criterion in ("tangent", "auto"):
             row = box.row(align=True)
             row.prop(settings, "edge", text="")
             row.prop(settings, "tangent_tolerance_mm", text="ε mm")
         refine = box.operator(operators.SHERD_OT_refine.bl_idname)
-        for name in ("criterion", "surface", "pareto_choice", "pareto_mean_count", "edge", "tangent_tolerance_mm"):
+        for name in REFINE_SETTINGS:
             setattr(refine, name, getattr(settings, name))
         if "sherd_refine_residual_mm" in obj:
             _row(box, "Residual", f"{obj['sherd_refine_residual_mm']:.3f}", "mm")
