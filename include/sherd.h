@@ -748,7 +748,8 @@ typedef struct {
    */
   uint64_t iterations;
   /**
-   * The criterion's residual at the start axis, millimetres.
+   * The criterion's residual at the start axis, millimetres; infinite where the
+   * criterion is undefined (AUTO kept its start: see `flagged`).
    */
   double start_residual_mm;
   /**
@@ -772,8 +773,10 @@ typedef struct {
    */
   size_t pareto_point_count;
   /**
-   * 1 when the refinement doubts its own axis: the skins barely fix its position
-   * (`flag_reason` in `sherd_refinement_report_json` says how little); 0 otherwise.
+   * 1 when the refinement doubts its own axis: the skins barely fix its position, or
+   * (AUTO) no level rim or base and no wall skin was left to refine by and the start
+   * axis is returned (`flag_reason` in `sherd_refinement_report_json` says which); 0
+   * otherwise.
    * `sherd_measure`'s intervals say how far such an axis may be off (on dense scans it
    * is often right: the test was calibrated on coarse fragments). A caller whose `size`
    * ends before this field (an older header) is not written to here.

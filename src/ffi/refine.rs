@@ -221,7 +221,8 @@ pub struct SherdRefineReport {
     pub surface: u32,
     /// Objective evaluations or optimiser iterations.
     pub iterations: u64,
-    /// The criterion's residual at the start axis, millimetres.
+    /// The criterion's residual at the start axis, millimetres; infinite where the
+    /// criterion is undefined (AUTO kept its start: see `flagged`).
     pub start_residual_mm: f64,
     /// The criterion's residual at the refined axis, millimetres.
     pub residual_mm: f64,
@@ -233,8 +234,10 @@ pub struct SherdRefineReport {
     pub section_count: usize,
     /// Points on the Pareto front (0 unless the criterion is Pareto).
     pub pareto_point_count: usize,
-    /// 1 when the refinement doubts its own axis: the skins barely fix its position
-    /// (`flag_reason` in `sherd_refinement_report_json` says how little); 0 otherwise.
+    /// 1 when the refinement doubts its own axis: the skins barely fix its position, or
+    /// (AUTO) no level rim or base and no wall skin was left to refine by and the start
+    /// axis is returned (`flag_reason` in `sherd_refinement_report_json` says which); 0
+    /// otherwise.
     /// `sherd_measure`'s intervals say how far such an axis may be off (on dense scans it
     /// is often right: the test was calibrated on coarse fragments). A caller whose `size`
     /// ends before this field (an older header) is not written to here.

@@ -135,7 +135,9 @@ pub struct RefineReport {
     /// Optimiser iterations (Nelder-Mead) or cost evaluations (Pareto).
     pub iterations: u64,
     /// Square root of the criterion's cost at the start axis (mm for all criteria but
-    /// Pareto, whose value is the circle residual).
+    /// Pareto, whose value is the circle residual); infinite where the criterion is
+    /// undefined (an automatic refinement that kept its start, flagged, because nothing
+    /// was left to refine by).
     pub start_residual_mm: f64,
     /// The same at the returned axis.
     pub residual_mm: f64,
