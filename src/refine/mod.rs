@@ -300,8 +300,11 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                             &settings,
                             None,
                         )?;
-                        let at_levelled = tangent::edge_evidence(&surface, edge, EDGE_LEVEL_TOLERANCE_MM, options.vertical_section_count, &levelled.parameters);
-                        flatter_by_plane(&surface, options, edge, &levelled, &at_levelled).map_or(levelled, |(_, polished)| polished)
+                        let flatter = (edge == Edge::Rim).then(|| {
+                            let at_levelled = tangent::edge_evidence(&surface, edge, EDGE_LEVEL_TOLERANCE_MM, options.vertical_section_count, &levelled.parameters);
+                            flatter_by_plane(&surface, options, edge, &levelled, &at_levelled)
+                        });
+                        flatter.flatten().map_or(levelled, |(_, polished)| polished)
                     }
                 };
                 // Never worse than the start by Eq. 7 itself.

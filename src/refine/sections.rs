@@ -110,6 +110,19 @@ impl CandidateFrame {
     pub fn apply_vector(&self, v: &Vector) -> Vector {
         self.rotation.inverse_transform_vector(v)
     }
+
+    /// A candidate-frame vector back in the start frame.
+    pub fn vector_to_start(&self, v: &Vector) -> Vector {
+        self.rotation * v
+    }
+}
+
+/// The tilts `[about x, about y]` of [`CandidateFrame::new`] whose axis runs along
+/// `direction` (start frame, pointing up, any length).
+pub fn tilts_along(direction: &Vector) -> [f64; 2] {
+    // direction = Ry(b) Rx(a) z = (sin b cos a, -sin a, cos b cos a)
+    let norm = direction.norm();
+    [(-direction.y / norm).clamp(-1.0, 1.0).asin(), direction.x.atan2(direction.z)]
 }
 
 /// The parameters of the axis with tilts `tilts` through the point `centre` at height
@@ -450,9 +463,7 @@ impl PreparedSurface {
     pub fn parameters_of(&self, axis: &Axis) -> AxisParameters {
         let direction = self.start_frame * axis.direction.into_inner();
         let direction = if direction.z < 0.0 { -direction } else { direction };
-        // direction = Ry(b) Rx(a) z = (sin b cos a, -sin a, cos b cos a)
-        let tilt_x = (-direction.y).clamp(-1.0, 1.0).asin();
-        let tilt_y = direction.x.atan2(direction.z);
+        let [tilt_x, tilt_y] = tilts_along(&direction);
         let point = self.start_frame * axis.point;
         let d = direction.normalize();
         let t = if d.z.abs() > 1e-12 { -point.z / d.z } else { 0.0 };

@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use super::objective::{minimize, FreeParameters, Minimum, Objective, SearchSettings};
 use super::circle_fit::{fit_circle, CircleFitMethod};
-use super::sections::{axis_through, vertical_sections, AxisParameters, CandidateFrame, PreparedSurface};
+use super::sections::{axis_through, tilts_along, vertical_sections, AxisParameters, CandidateFrame, PreparedSurface};
 use crate::mesh::{planar_length, Point};
 
 /// Which horizontal edge of the vessel the fragment preserves.
@@ -193,9 +193,7 @@ const PLANE_BAND_MM: f64 = 0.5;
 
 /// Turns `(tilt_x, tilt_y)` of the axis perpendicular to the plane `z = c + a x + b y`.
 fn tilts_of_plane(a: f64, b: f64) -> [f64; 2] {
-    // direction = Ry(ty) Rx(tx) z = (sin ty cos tx, -sin tx, cos ty cos tx) along (-a, -b, 1).
-    let norm = (a * a + b * b + 1.0).sqrt();
-    [(b / norm).asin(), (-a).atan2(1.0)]
+    tilts_along(&crate::mesh::Vector::new(-a, -b, 1.0))
 }
 
 impl TangentObjective {
@@ -410,12 +408,9 @@ pub fn level_by_plane(surface: &PreparedSurface, edge: Edge, tolerance_mm: f64, 
     for _ in 0..PLANE_LEVELLING_ROUNDS {
         let local = objective.plane_tilts(&parameters, None)?;
         // The plane's tilts are in the candidate frame: its normal is carried to the start
-        // frame and read back as tilts there (`CandidateFrame::new`'s convention).
-        let frame = CandidateFrame::new(&parameters);
+        // frame and read back as tilts there.
         let normal = CandidateFrame::new(&[local[0], local[1], 0.0, 0.0]).direction();
-        let direction = frame.to_start(&Point::from(normal)) - frame.to_start(&Point::origin());
-        parameters[0] = (-direction.y / direction.norm()).asin();
-        parameters[1] = direction.x.atan2(direction.z);
+        [parameters[0], parameters[1]] = tilts_along(&CandidateFrame::new(&parameters).vector_to_start(&normal));
         if local[0].hypot(local[1]) < 1e-7 {
             break;
         }
@@ -424,8 +419,10 @@ pub fn level_by_plane(surface: &PreparedSurface, edge: Edge, tolerance_mm: f64, 
     Some(Minimum { parameters, value, iterations: levelled.iterations })
 }
 
-/// Most turns of [`level_by_plane`]: each turn leaves the plane about a hundredth of the
-/// last one's tilt (the level set changes little), and fewer than five reach 1e-7 radians.
+/// Most turns of [`level_by_plane`]: each turn leaves a tenth to a five-hundredth of the
+/// last one's tilt (the level set changes little as the plane turns). Of 100 rims of the
+/// refinement corpus levelled from 3 degrees off, 82 came within 1e-7 radians in three
+/// turns, all but two within seven, and those two to 2e-7 in eight.
 const PLANE_LEVELLING_ROUNDS: usize = 8;
 
 /// Evidence that a fragment keeps a rim or base: the extremes of its vertical sections
