@@ -471,6 +471,16 @@ impl PreparedSurface {
         [tilt_x, tilt_y, crossing.x, crossing.y]
     }
 
+    /// The number of vertices on the chosen wall skins.
+    pub fn skin_vertex_count(&self) -> usize {
+        self.skins.iter().filter(|s| s.is_some()).count()
+    }
+
+    /// The share of the fragment's vertices on the chosen wall skins.
+    pub fn wall_share(&self) -> f64 {
+        self.skin_vertex_count() as f64 / self.points.len().max(1) as f64
+    }
+
     /// Whether the fragment has faces (plane cuts) or only points (slabs).
     pub fn has_faces(&self) -> bool {
         !self.skin_triangles.is_empty()
