@@ -451,5 +451,9 @@ fn a_levelling_at_the_search_bound_is_no_edge() {
         println!("vessel {vessel_seed} fragment {fragment}: {angle:.2} deg, tilt {:.2}, {:?}, {}", refined.report.tilt_deg, refined.report.method, refined.report.reason);
         assert!(refined.report.tilt_deg < 9.9, "vessel {vessel_seed} fragment {fragment}: turned {:.2} deg", refined.report.tilt_deg);
         assert_ne!(refined.report.method, Criterion::Tangent, "vessel {vessel_seed} fragment {fragment}: {}", refined.report.reason);
+        // Asked for by name, the plane is given, flagged.
+        let asked = refine(&sherd.mesh, &start, &RefineOptions { criterion: Criterion::Tangent, ..Default::default() }).unwrap();
+        println!("  asked for the tangent plane: tilt {:.2}, {:?}", asked.report.tilt_deg, asked.report.flag_reason);
+        assert!(asked.report.tilt_deg < 9.9 || asked.report.flag_reason.as_deref().is_some_and(|r| r.contains("search bound")), "{:?}", asked.report);
     }
 }

@@ -234,10 +234,10 @@ pub struct SherdRefineReport {
     pub section_count: usize,
     /// Points on the Pareto front (0 unless the criterion is Pareto).
     pub pareto_point_count: usize,
-    /// 1 when the refinement doubts its own axis: the skins barely fix its position, or
+    /// 1 when the refinement doubts its own axis: the skins barely fix its position,
     /// (AUTO) no level rim or base and no wall skin was left to refine by and the start
-    /// axis is returned (`flag_reason` in `sherd_refinement_report_json` says which); 0
-    /// otherwise.
+    /// axis is returned, or (TANGENT) the plane turned the axis to or past the search
+    /// bound (`flag_reason` in `sherd_refinement_report_json` says which); 0 otherwise.
     /// `sherd_measure`'s intervals say how far such an axis may be off (on dense scans it
     /// is often right: the test was calibrated on coarse fragments). A caller whose `size`
     /// ends before this field (an older header) is not written to here.

@@ -148,8 +148,10 @@ pub struct RefineReport {
     /// True when the criterion did not improve on the start axis, which is returned.
     pub kept_start: bool,
     /// True when the result should not be trusted without a look: the circles criterion
-    /// left the axis's radial position undetermined. On the synthetic corpus this flags
-    /// 9 of the 10 circles results more than 4 mm off (3 vessels) and 3 of 25 good ones.
+    /// left the axis's radial position undetermined (on the synthetic corpus this flags
+    /// 9 of the 10 circles results more than 4 mm off (3 vessels) and 3 of 25 good ones),
+    /// the automatic refinement found nothing to refine by and kept its start, or the
+    /// tangent plane asked for by name turned the axis to or past the search bound.
     #[serde(default)]
     pub flagged: bool,
     /// Why the result is flagged.
@@ -319,6 +321,15 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                 if let Some(face) = face.flatten() {
                     tilted = [face.tilts[0], face.tilts[1], tilted[2], tilted[3]];
                     flat_face = Some(face);
+                }
+                // Asked for by name, the plane is kept, but a levelling at or past the
+                // bound is what the detection would not have taken for an edge.
+                if reaches_bound(&tilted, bound) {
+                    flag = Some(format!(
+                        "the tangent plane turned the axis {:.1} degrees from the start, at or past the search bound ({} degrees): no level {edge:?} was found inside it",
+                        tilted[0].hypot(tilted[1]).to_degrees(),
+                        options.search_bound_deg
+                    ));
                 }
                 (tilted, cost, iterations, kept)
             };
@@ -670,9 +681,7 @@ fn detect_edges_levelled(
         // lies level there is whatever the bound left, such as the flank of a rounded
         // underside (a floor piece levelled 7.4 degrees off at a 10 degree bound), or a
         // break line the plane of its extremes turned further (a body piece 18.7 off).
-        .filter(|(_, levelled)| {
-            levelled.as_ref().is_none_or(|m| m.parameters[0].hypot(m.parameters[1]) < AT_BOUND_SHARE * settings.tilt_bound_rad)
-        })
+        .filter(|(_, levelled)| levelled.as_ref().is_none_or(|m| !reaches_bound(&m.parameters, settings.tilt_bound_rad)))
         .collect()
 }
 
@@ -721,5 +730,11 @@ fn is_floor(surface: &PreparedSurface) -> bool {
 }
 /// A levelling whose tilt reaches this share of the search bound stopped at the bound.
 const AT_BOUND_SHARE: f64 = 0.99;
+
+/// Whether the tilts of `parameters` reach the search bound `bound_rad` (at
+/// [`AT_BOUND_SHARE`] of it) or lie past it.
+fn reaches_bound(parameters: &AxisParameters, bound_rad: f64) -> bool {
+    parameters[0].hypot(parameters[1]) >= AT_BOUND_SHARE * bound_rad
+}
 /// Height tolerance of the level test, millimetres.
 const EDGE_LEVEL_TOLERANCE_MM: f64 = 1.0;

@@ -134,12 +134,13 @@ class Refinement:
     pareto_front: np.ndarray
     report: dict
     flagged: bool = False
+    """The refinement doubts its axis: the skins barely fix its position, the automatic
+    criterion found nothing to refine by and kept the start, or the tangent plane asked for
+    by name reached the search bound. ``report["flag_reason"]`` says which;
+    :func:`measure`'s intervals say how far off it may be."""
     pareto_plot_svg: str = ""
     """The Pareto front drawn as an SVG plot (the chosen solution circled); empty unless
     the criterion is Pareto."""
-    """The refinement doubts its axis (the skins barely fix its position):
-    ``report["flag_reason"]`` says how little; :func:`measure`'s intervals say how far off
-    it may be."""
 
 
 PARETO_CHOICES = {"knee": 0, "centres": 1, "residuals": 2, "mean_of_best": 3}
