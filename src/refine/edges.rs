@@ -90,6 +90,15 @@ pub(crate) fn detect_edges_levelled(
             if let Some((at_polished, polished)) = relevelled {
                 return Some((at_polished, Some(polished)));
             }
+            // Eq. 7 held at the search's bound found no level plane inside it: what lies
+            // level there is whatever the bound left, such as the flank of a rounded
+            // underside (a floor piece levelled 7.4 degrees off at a 10 degree bound). A
+            // plane that takes over from there, the rim's plane of level extremes above or
+            // a flat underside, is judged where it leads (and the refinement flags an
+            // axis past the bound).
+            if minimum.as_ref().is_some_and(|m| reaches_bound(&m.parameters, settings.tilt_bound_rad)) && !face_holds() {
+                return None;
+            }
             if passes(&at_levelled) {
                 return Some((at_levelled, minimum));
             }
@@ -103,11 +112,6 @@ pub(crate) fn detect_edges_levelled(
             };
             [levelled, [0.0; 4]].iter().map(partial).find(passes).map(|evidence| (evidence, minimum))
         })
-        // A levelling at or past the search's bound found no level plane inside it: what
-        // lies level there is whatever the bound left, such as the flank of a rounded
-        // underside (a floor piece levelled 7.4 degrees off at a 10 degree bound), or a
-        // break line the plane of its extremes turned further (a body piece 18.7 off).
-        .filter(|(_, levelled)| levelled.as_ref().is_none_or(|m| !reaches_bound(&m.parameters, settings.tilt_bound_rad)))
         .collect()
 }
 

@@ -325,11 +325,12 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                     tilted = [face.tilts[0], face.tilts[1], tilted[2], tilted[3]];
                     flat_face = Some(face);
                 }
-                // Asked for by name, the plane is kept, but a levelling at or past the
-                // bound is what the detection would not have taken for an edge.
+                // The plane of level extremes and a flat underside are not bounded: an
+                // axis they carry to or past the bound lies where the search was told
+                // not to look.
                 if reaches_bound(&tilted, bound) {
                     flag = Some(format!(
-                        "the tangent plane turned the axis {:.1} degrees from the start, at or past the search bound ({} degrees): no level {edge:?} was found inside it",
+                        "the tangent plane turned the axis {:.1} degrees from the start, at or past the search bound ({} degrees): the start, or the {edge:?} taken as level, is off",
                         tilted[0].hypot(tilted[1]).to_degrees(),
                         options.search_bound_deg
                     ));
