@@ -155,6 +155,7 @@ const MIN_WALL_SHARE: f64 = 0.02;
 pub(crate) fn is_floor(surface: &PreparedSurface) -> bool {
     surface.wall_share() < MIN_WALL_SHARE
 }
+
 /// A levelling whose tilt reaches this share of the search bound stopped at the bound.
 const AT_BOUND_SHARE: f64 = 0.99;
 
@@ -163,5 +164,6 @@ const AT_BOUND_SHARE: f64 = 0.99;
 pub(crate) fn reaches_bound(parameters: &AxisParameters, bound_rad: f64) -> bool {
     parameters[0].hypot(parameters[1]) >= AT_BOUND_SHARE * bound_rad
 }
+
 /// Height tolerance of the level test, millimetres.
 pub(crate) const EDGE_LEVEL_TOLERANCE_MM: f64 = 1.0;
