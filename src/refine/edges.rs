@@ -64,9 +64,10 @@ pub(crate) fn detect_edges_levelled(
             // A base that sags is still a base where a flat underside holds its plane. A
             // floor has no rim: its highest points lie on its upper face, which passes
             // for one only where it is flat (its underside, when the start axis holds the
-            // floor upside down).
+            // floor upside down). The face is fitted once, when first asked for.
             let floor_top = edge == Edge::Rim && is_floor(surface);
-            let face_holds = || (edge == Edge::Base || floor_top) && tangent::flat_face(surface, edge, &levelled).is_some();
+            let face = std::cell::OnceCell::new();
+            let face_holds = || face.get_or_init(|| flat_face_giving_tilts(surface, edge, &levelled)).is_some();
             let passes = |e: &tangent::EdgeEvidence| {
                 e.level_fraction >= min_level_fraction
                     && e.spread_mm <= EDGE_MAX_SPREAD_MM
@@ -152,8 +153,15 @@ const MIN_WALL_SHARE: f64 = 0.02;
 
 /// Whether the piece is a floor, with (almost) no wall: its highest points lie on its
 /// upper face, which Eq. 7 levels as readily as an edge.
-pub(crate) fn is_floor(surface: &PreparedSurface) -> bool {
+fn is_floor(surface: &PreparedSurface) -> bool {
     surface.wall_share() < MIN_WALL_SHARE
+}
+
+/// The flat face that gives `edge` its tilts under the levelled axis `parameters`: a
+/// base's underside, or a floor's upper face ([`tangent::flat_face`]); never the rim of a
+/// wall, whose flat top slants with the wall. `None` where that face is not flat.
+pub(crate) fn flat_face_giving_tilts(surface: &PreparedSurface, edge: Edge, parameters: &AxisParameters) -> Option<tangent::FlatFace> {
+    (edge == Edge::Base || is_floor(surface)).then(|| tangent::flat_face(surface, edge, parameters)).flatten()
 }
 
 /// A levelling whose tilt reaches this share of the search bound stopped at the bound.

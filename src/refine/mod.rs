@@ -37,7 +37,7 @@ pub use tangent::Edge;
 use crate::mesh::Mesh;
 use crate::orient::Axis;
 use crate::{Error, Result};
-use edges::{detect_edges_levelled, flatter_by_plane, is_floor, reaches_bound, EDGE_LEVEL_TOLERANCE_MM};
+use edges::{detect_edges_levelled, flat_face_giving_tilts, flatter_by_plane, reaches_bound, EDGE_LEVEL_TOLERANCE_MM};
 use objective::{minimize, Minimum, Objective, SearchSettings};
 use sections::{AxisParameters, PreparedSurface};
 
@@ -320,8 +320,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                 };
                 // A flat underside (or a floor's flat face) holds the tilts better than its
                 // sections' extremes.
-                let face = (edge == Edge::Base || is_floor(&surface)).then(|| tangent::flat_face(&surface, edge, &tilted));
-                if let Some(face) = face.flatten() {
+                if let Some(face) = flat_face_giving_tilts(&surface, edge, &tilted) {
                     tilted = [face.tilts[0], face.tilts[1], tilted[2], tilted[3]];
                     flat_face = Some(face);
                 }

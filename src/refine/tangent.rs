@@ -24,6 +24,17 @@ pub enum Edge {
     Base,
 }
 
+impl Edge {
+    /// +1 for the rim, -1 for the base: the sign of a height (or of a normal's component
+    /// along the axis) that points away from the piece at this edge.
+    fn outward(self) -> f64 {
+        match self {
+            Edge::Rim => 1.0,
+            Edge::Base => -1.0,
+        }
+    }
+}
+
 /// Eq. 7 on a prepared fragment.
 pub struct TangentObjective {
     /// Candidate extremes of each vertical section (fixed in the start frame: the tilts
@@ -292,10 +303,7 @@ pub fn flat_face(surface: &PreparedSurface, edge: Edge, parameters: &AxisParamet
     let frame = CandidateFrame::new(parameters);
     // For the underside, heights and normals turned upside down: the lowest point is the
     // highest.
-    let facing = match edge {
-        Edge::Rim => 1.0,
-        Edge::Base => -1.0,
-    };
+    let facing = edge.outward();
     let candidates: Vec<(Point, f64)> = surface
         .points
         .iter()
@@ -483,10 +491,7 @@ pub fn edge_sag_mm(level: &[Point], edge: Edge) -> f64 {
     if !(half_arc > 1e-9) {
         return 0.0;
     }
-    let away = match edge {
-        Edge::Rim => -1.0,
-        Edge::Base => 1.0,
-    };
+    let away = -edge.outward();
     let mut normal = nalgebra::Matrix3::<f64>::zeros();
     let mut right = nalgebra::Vector3::<f64>::zeros();
     for (p, azimuth) in level.iter().zip(&azimuths) {
