@@ -1,11 +1,13 @@
 //! The rim and base a fragment keeps: each levelled by the tangent plane (Eq. 7, see
-//! [`super::tangent`]) from the start axis and then tested for being an edge, level along
-//! the arc, not sagging, not a floor's face, found inside the search bound. The automatic
+//! [`super::tangent`]) from the start axis, or by the flat face a base stands on
+//! ([`super::flat_face`]), and then tested for being an edge, level along the arc, not
+//! sagging, not a floor's face, found inside the search bound. The automatic
 //! refinement takes the tangent plane where one passes, and the measurements report a rim
 //! or base diameter only where one does.
 
-use super::objective::{Minimum, SearchSettings};
+use super::objective::{Minimum, Objective, SearchSettings};
 use super::sections::{AxisParameters, PreparedSurface};
+use super::flat_face::{flat_face, FlatFace};
 use super::tangent::{self, Edge};
 use super::{FreeParameters, RefineOptions};
 
@@ -28,13 +30,21 @@ pub fn detect_edges_over(surface: &PreparedSurface, options: &RefineOptions, min
     detect_edges_levelled(surface, options, min_level_fraction).into_iter().map(|(evidence, _)| evidence).collect()
 }
 
+/// How a detected edge was levelled: Eq. 7's minimum, its tilts the flat face's where one
+/// gives them, and that face.
+#[derive(Clone, Debug)]
+pub(crate) struct Levelling {
+    pub minimum: Minimum,
+    pub face: Option<FlatFace>,
+}
+
 /// [`detect_edges_over`] with each detected edge's levelling (`None` when the options
 /// hold the tilts).
 pub(crate) fn detect_edges_levelled(
     surface: &PreparedSurface,
     options: &RefineOptions,
     min_level_fraction: [f64; 2],
-) -> Vec<(tangent::EdgeEvidence, Option<Minimum>)> {
+) -> Vec<(tangent::EdgeEvidence, Option<Levelling>)> {
     let settings = SearchSettings {
         free: FreeParameters::TiltsOnly,
         tilt_bound_rad: options.search_bound_deg.to_radians(),
@@ -59,23 +69,33 @@ pub(crate) fn detect_edges_levelled(
                     .ok()?,
                 )
             };
-            let levelled = minimum.map_or([0.0; 4], |m| m.parameters);
             let min_level_fraction = min_level_fraction[usize::from(edge == Edge::Base)];
-            // A base that sags is still a base where a flat underside holds its plane. A
-            // floor has no rim: its highest points lie on its upper face, which passes
+            // A floor has no rim: its highest points lie on its upper face, which passes
             // for one only where it is flat (its underside, when the start axis holds the
-            // floor upside down). The face is fitted once, when first asked for.
+            // floor upside down).
             let floor_top = edge == Edge::Rim && is_floor(surface);
-            let face = std::cell::OnceCell::new();
-            let face_holds = || face.get_or_init(|| flat_face_giving_tilts(surface, edge, &levelled)).is_some();
+            // The flat face a base stands on gives its tilts, wherever Eq. 7 led; a base
+            // that sags is still a base where its face holds its plane.
+            let face = face_for_levelling(surface, options, edge, &minimum.as_ref().map_or([0.0; 4], |m| m.parameters));
+            let face_holds = face.is_some();
             let passes = |e: &tangent::EdgeEvidence| {
                 e.level_fraction >= min_level_fraction
                     && e.spread_mm <= EDGE_MAX_SPREAD_MM
                     && match floor_top {
-                        true => face_holds(),
-                        false => e.sag_mm.abs() <= EDGE_MAX_SAG_MM || face_holds(),
+                        true => face_holds,
+                        false => e.sag_mm.abs() <= EDGE_MAX_SAG_MM || face_holds,
                     }
             };
+            let minimum = match (minimum, &face) {
+                (Some(eq7), Some(face)) => {
+                    let parameters = [face.tilts[0], face.tilts[1], eq7.parameters[2], eq7.parameters[3]];
+                    let objective = tangent::TangentObjective::new(surface, edge, options.tangent_tolerance_mm, options.vertical_section_count);
+                    Some(Minimum { parameters, value: objective.value(&parameters), ..eq7 })
+                }
+                (minimum, _) => minimum,
+            };
+            let levelled = minimum.map_or([0.0; 4], |m| m.parameters);
+            let levelling = |minimum: Option<Minimum>| minimum.map(|minimum| Levelling { minimum, face: face.clone() });
             let evidence = |parameters: &AxisParameters| {
                 tangent::edge_evidence(surface, edge, EDGE_LEVEL_TOLERANCE_MM, options.vertical_section_count, parameters)
             };
@@ -85,11 +105,11 @@ pub(crate) fn detect_edges_levelled(
             // the level test otherwise: turned onto its own extremes, a body sherd's break
             // line passed as a rim (synthetic_sherd 30 went 14 degrees off).
             let passes_but_for_sag = passes(&tangent::EdgeEvidence { sag_mm: 0.0, ..at_levelled });
-            let relevelled = minimum.as_ref().filter(|_| passes_but_for_sag).and_then(|m| {
+            let relevelled = minimum.as_ref().filter(|_| passes_but_for_sag && !face_holds).and_then(|m| {
                 flatter_by_plane(surface, options, edge, m, &at_levelled).filter(|(at_polished, _)| passes(at_polished))
             });
             if let Some((at_polished, polished)) = relevelled {
-                return Some((at_polished, Some(polished)));
+                return Some((at_polished, levelling(Some(polished))));
             }
             // Eq. 7 held at the search's bound found no level plane inside it: what lies
             // level there is whatever the bound left, such as the flank of a rounded
@@ -97,11 +117,11 @@ pub(crate) fn detect_edges_levelled(
             // plane that takes over from there, the rim's plane of level extremes above or
             // a flat underside, is judged where it leads (and the refinement flags an
             // axis past the bound).
-            if minimum.as_ref().is_some_and(|m| reaches_bound(&m.parameters, settings.tilt_bound_rad)) && !face_holds() {
+            if minimum.as_ref().is_some_and(|m| reaches_bound(&m.parameters, settings.tilt_bound_rad)) && !face_holds {
                 return None;
             }
             if passes(&at_levelled) {
-                return Some((at_levelled, minimum));
+                return Some((at_levelled, levelling(minimum)));
             }
             // A partial edge is level from its top, and levelling it lets the rising break
             // lines pull the plane off it: it is also tested at the axis as given.
@@ -111,9 +131,18 @@ pub(crate) fn detect_edges_levelled(
             let partial = |parameters: &AxisParameters| {
                 tangent::edge_evidence_anchored(surface, edge, EDGE_LEVEL_TOLERANCE_MM, options.vertical_section_count, parameters, true)
             };
-            [levelled, [0.0; 4]].iter().map(partial).find(passes).map(|evidence| (evidence, minimum))
+            [levelled, [0.0; 4]].iter().map(partial).find(passes).map(|evidence| (evidence, levelling(minimum)))
         })
         .collect()
+}
+
+/// The flat face that gives `edge` its tilts after Eq. 7 levelled it to `eq7_levelled`:
+/// a base's underside, or a floor's upper face ([`flat_face`]), within the search bound;
+/// never the rim of a wall, whose flat top slants with the wall. A flat face holds the
+/// edge's tilts better than Eq. 7's extremes, and still finds them where the wall's
+/// first rise beside a small floor led Eq. 7 off.
+pub(crate) fn face_for_levelling(surface: &PreparedSurface, options: &RefineOptions, edge: Edge, eq7_levelled: &AxisParameters) -> Option<FlatFace> {
+    (edge == Edge::Base || is_floor(surface)).then(|| flat_face(surface, edge, eq7_levelled, options.search_bound_deg.to_radians())).flatten()
 }
 
 /// A rim's levelling `levelled` (with its evidence `at_levelled`) turned onto the plane of
@@ -155,13 +184,6 @@ const MIN_WALL_SHARE: f64 = 0.02;
 /// upper face, which Eq. 7 levels as readily as an edge.
 fn is_floor(surface: &PreparedSurface) -> bool {
     surface.wall_share() < MIN_WALL_SHARE
-}
-
-/// The flat face that gives `edge` its tilts under the levelled axis `parameters`: a
-/// base's underside, or a floor's upper face ([`tangent::flat_face`]); never the rim of a
-/// wall, whose flat top slants with the wall. `None` where that face is not flat.
-pub(crate) fn flat_face_giving_tilts(surface: &PreparedSurface, edge: Edge, parameters: &AxisParameters) -> Option<tangent::FlatFace> {
-    (edge == Edge::Base || is_floor(surface)).then(|| tangent::flat_face(surface, edge, parameters)).flatten()
 }
 
 /// A levelling whose tilt reaches this share of the search bound stopped at the bound.

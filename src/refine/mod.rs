@@ -15,6 +15,7 @@ pub mod accuracy;
 pub mod circle_fit;
 pub mod circles;
 pub mod edges;
+pub mod flat_face;
 pub mod normal_line_placement;
 pub mod objective;
 pub mod pareto;
@@ -37,7 +38,7 @@ pub use tangent::Edge;
 use crate::mesh::Mesh;
 use crate::orient::Axis;
 use crate::{Error, Result};
-use edges::{detect_edges_levelled, flat_face_giving_tilts, flatter_by_plane, reaches_bound, EDGE_LEVEL_TOLERANCE_MM};
+use edges::{detect_edges_levelled, face_for_levelling, flatter_by_plane, reaches_bound, Levelling, EDGE_LEVEL_TOLERANCE_MM};
 use objective::{minimize, Minimum, Objective, SearchSettings};
 use sections::{AxisParameters, PreparedSurface};
 
@@ -293,7 +294,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                 (start, tangent_start, 0, true)
             } else {
                 // The detection levelled the edge from this start with these settings.
-                let levelled = match levelled_by_detection {
+                let Levelling { minimum: levelled, face } = match levelled_by_detection {
                     Some(levelled) => levelled,
                     None => {
                         let levelled = tangent::level_edge(
@@ -305,11 +306,12 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                             &settings,
                             None,
                         )?;
-                        let flatter = (edge == Edge::Rim).then(|| {
+                        let face = face_for_levelling(&surface, options, edge, &levelled.parameters);
+                        let flatter = (edge == Edge::Rim && face.is_none()).then(|| {
                             let at_levelled = tangent::edge_evidence(&surface, edge, EDGE_LEVEL_TOLERANCE_MM, options.vertical_section_count, &levelled.parameters);
                             flatter_by_plane(&surface, options, edge, &levelled, &at_levelled)
                         });
-                        flatter.flatten().map_or(levelled, |(_, polished)| polished)
+                        Levelling { minimum: flatter.flatten().map_or(levelled, |(_, polished)| polished), face }
                     }
                 };
                 // Never worse than the start by Eq. 7 itself.
@@ -320,7 +322,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                 };
                 // A flat underside (or a floor's flat face) holds the tilts better than its
                 // sections' extremes.
-                if let Some(face) = flat_face_giving_tilts(&surface, edge, &tilted) {
+                if let Some(face) = face {
                     tilted = [face.tilts[0], face.tilts[1], tilted[2], tilted[3]];
                     flat_face = Some(face);
                 }
@@ -542,8 +544,9 @@ pub(crate) struct Choice {
     /// The edge for the tangent criterion.
     pub edge: Option<Edge>,
     /// The edge levelled from the start axis, where the detection already did it (the
-    /// tangent criterion's own first step, with the same settings).
-    pub levelled: Option<Minimum>,
+    /// tangent criterion's own first step, with the same settings), with the flat face
+    /// that gave its tilts.
+    pub levelled: Option<Levelling>,
 }
 
 /// The criterion to run, why, the edge for the tangent criterion and, where the edge was

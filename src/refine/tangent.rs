@@ -27,7 +27,7 @@ pub enum Edge {
 impl Edge {
     /// +1 for the rim, -1 for the base: the sign of a height (or of a normal's component
     /// along the axis) that points away from the piece at this edge.
-    fn outward(self) -> f64 {
+    pub(crate) fn outward(self) -> f64 {
         match self {
             Edge::Rim => 1.0,
             Edge::Base => -1.0,
@@ -248,108 +248,6 @@ fn least_squares_plane(points: impl IntoIterator<Item = ([f64; 3], f64)>) -> Opt
         right += weight * row * z;
     }
     Some(normal.cholesky()?.solve(&right))
-}
-
-/// A vertex belongs to the face when its normal is within about 25 degrees of the axis,
-/// facing away from the piece (down for the underside, up for the upper face).
-const FACE_NORMAL_MIN_COSINE: f64 = 0.9;
-/// The band about the levelled extreme from which the face's vertices are first taken, mm.
-const FACE_START_BAND_MM: f64 = 0.5;
-/// Narrowest band the face's plane keeps its vertices within, mm.
-const FACE_MIN_BAND_MM: f64 = 0.05;
-/// Widest band (three robust standard deviations of the vertices about their plane) of a
-/// face flat enough to give the tilts, mm. On the refinement corpus (scan noise
-/// 0.02 mm) the flat undersides end at 0.06-0.09 mm, the curved ones at 0.2-0.47 mm: any
-/// limit from 0.1 to 0.2 mm gave the same axes. A noisier scan's underside fails it and
-/// keeps Eq. 7's tilts.
-const FACE_MAX_BAND_MM: f64 = 0.15;
-/// Fewest face vertices, and the least spread of them (standard deviation along
-/// their narrowest direction, mm), for a plane.
-const FACE_MIN_VERTICES: usize = 20;
-const FACE_MIN_SPREAD_MM: f64 = 1.0;
-
-/// The plane of a flat face (a base's underside, a floor's upper face), as the tilts of
-/// the axis perpendicular to it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FlatFace {
-    /// `(tilt_x, tilt_y)` of the axis perpendicular to the face (start frame).
-    pub tilts: [f64; 2],
-    /// Vertices the plane runs through.
-    pub vertex_count: usize,
-    /// Three robust standard deviations of those vertices about the plane, mm.
-    pub band_mm: f64,
-}
-
-/// The flat face of `edge` (a base's underside) under the axis `parameters` that levelled
-/// it: the least-squares plane through every vertex of the face, with vertices farther
-/// than three robust standard deviations from it dropped in turn, rather than through one
-/// lowest vertex per vertical section. Eq. 7's extremes fix the tilt about the arc's chord
-/// only through the arc's sagitta, and the scan's noise reaches each extreme whole; the
-/// underside's vertices are many and span the floor. The underside a vessel stands on is
-/// its horizontal by definition. On the refinement corpus the bases levelled by the
-/// tangent plane went from a median error of 0.110 to 0.030 degrees
-/// (`examples/refine_accuracy.rs`).
-///
-/// The upper face (`edge` `Rim`: normals up the axis) is for floor pieces, which have no
-/// wall: held upside down by their start axis, they show their underside there. Not for
-/// the rim of a wall: a flat rim top is cut square across the wall, so on a wall that
-/// slants it is a band of a cone, whose plane over a short arc turns with the slant exactly
-/// as a tilted axis would (on 200k-face synthetic rims one went from 0.29 to 0.86
-/// degrees); the rim's tangent plane is the one through its highest points, Eq. 7's.
-///
-/// `None` when the face has too few vertices, they lie along a line, or they are not
-/// flat (0.15 mm, `FACE_MAX_BAND_MM`: a curved or footed underside).
-pub fn flat_face(surface: &PreparedSurface, edge: Edge, parameters: &AxisParameters) -> Option<FlatFace> {
-    let frame = CandidateFrame::new(parameters);
-    // For the underside, heights and normals turned upside down: the lowest point is the
-    // highest.
-    let facing = edge.outward();
-    let candidates: Vec<(Point, f64)> = surface
-        .points
-        .iter()
-        .zip(&surface.normals)
-        .filter(|(_, n)| facing * frame.apply_vector(n).z >= FACE_NORMAL_MIN_COSINE)
-        .map(|(p, _)| (*p, facing * frame.height(p)))
-        .collect();
-    let extreme = candidates.iter().map(|c| c.1).fold(f64::NEG_INFINITY, f64::max);
-    if !extreme.is_finite() {
-        return None;
-    }
-    // Each candidate's offset from the current plane: first the levelled extreme's
-    // horizontal plane under the candidate frame, then the fitted plane (start frame).
-    let mut offsets: Vec<f64> = candidates.iter().map(|c| c.1 - extreme).collect();
-    let mut band_mm = FACE_START_BAND_MM;
-    let mut face = None;
-    for _ in 0..4 {
-        let chosen: Vec<&Point> = candidates.iter().zip(&offsets).filter(|(_, r)| r.abs() <= band_mm).map(|(c, _)| &c.0).collect();
-        if chosen.len() < FACE_MIN_VERTICES {
-            break;
-        }
-        let count = chosen.len() as f64;
-        let mean = chosen.iter().fold(nalgebra::Vector3::zeros(), |sum, p| sum + p.coords) / count;
-        let centred: Vec<nalgebra::Vector3<f64>> = chosen.iter().map(|p| p.coords - mean).collect();
-        let spread = centred.iter().fold(nalgebra::Matrix2::<f64>::zeros(), |sum, d| {
-            let across = nalgebra::Vector2::new(d.x, d.y);
-            sum + across * across.transpose()
-        });
-        if (spread / count).symmetric_eigenvalues().min() < FACE_MIN_SPREAD_MM * FACE_MIN_SPREAD_MM {
-            break;
-        }
-        let Some(plane) = least_squares_plane(centred.iter().map(|d| ([d.x, d.y, d.z], 1.0))) else { break };
-        offsets = candidates
-            .iter()
-            .map(|(p, _)| {
-                let d = p.coords - mean;
-                d.z - plane[0] - plane[1] * d.x - plane[2] * d.y
-            })
-            .collect();
-        let mut deviations: Vec<f64> = offsets.iter().filter(|r| r.abs() <= band_mm).map(|r| r.abs()).collect();
-        // 1.4826 turns a median absolute deviation into a normal standard deviation.
-        let robust_band = 3.0 * 1.4826 * crate::statistics::quantile(&mut deviations, 0.5);
-        face = Some(FlatFace { tilts: tilts_of_plane(plane[1], plane[2]), vertex_count: chosen.len(), band_mm: robust_band });
-        band_mm = robust_band.clamp(FACE_MIN_BAND_MM, FACE_START_BAND_MM);
-    }
-    face.filter(|face| face.band_mm <= FACE_MAX_BAND_MM && face.tilts.iter().all(|t| t.is_finite()))
 }
 
 impl Objective for TangentObjective {

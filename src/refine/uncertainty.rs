@@ -175,7 +175,7 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
     }
     super::validate(mesh, axis, options)?;
     let surface = PreparedSurface::new(mesh, axis, options.surface, options.section_count)?;
-    let super::Choice { criterion: method, edge, .. } = choose_criterion(&surface, options);
+    let super::Choice { criterion: method, edge, levelled, .. } = choose_criterion(&surface, options);
     let section_count = surface.horizontal_sections(&super::sections::CandidateFrame::new(&[0.0; 4])).len();
     let settings = SearchSettings {
         free: options.free,
@@ -218,6 +218,10 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
         }
         _ => None,
     };
+    // Tilts a flat face gave are resampled over the face's vertices: its plane, not the
+    // extremes' (which the wall's first rise beside a small floor leads off), holds them.
+    let face = levelled.and_then(|levelled| levelled.face).filter(|_| tangent.is_some());
+    let face_tilts = face.as_ref().and_then(|face| face.resampled_tilts(&vec![1.0; face.vertices.len()]));
     let axes = (0..bootstrap.samples)
         .into_par_iter()
         .filter_map(|sample| {
@@ -232,9 +236,13 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
                     // Repeating the Nelder-Mead search of Eq. 7 instead let a resample of a
                     // short rim (its sections nearly on one chord) drift about that chord
                     // to the search bound: intervals of 20 degrees beside others of 0.
-                    let tangent_weights = resample_weights(tangent.section_count(), &mut rng);
-                    let [base_x, base_y] = tangent.plane_tilts(&start, None)?;
-                    let [tilt_x, tilt_y] = tangent.plane_tilts(&start, Some(&tangent_weights))?;
+                    let ([base_x, base_y], [tilt_x, tilt_y]) = match (&face, face_tilts) {
+                        (Some(face), Some(face_tilts)) => (face_tilts, face.resampled_tilts(&resample_weights(face.vertices.len(), &mut rng))?),
+                        _ => {
+                            let tangent_weights = resample_weights(tangent.section_count(), &mut rng);
+                            (tangent.plane_tilts(&start, None)?, tangent.plane_tilts(&start, Some(&tangent_weights))?)
+                        }
+                    };
                     start = [tilt_x - base_x, tilt_y - base_y, 0.0, 0.0];
                     if options.tangent_places_by_circles {
                         start = place(&circles, start).map_or(start, |(placed, _)| placed);
