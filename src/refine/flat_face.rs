@@ -324,3 +324,60 @@ fn densest_directions(directions: &[Vector], min_cosine: f64, count: usize) -> V
     found
 }
 
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::Mesh;
+    use crate::orient::Axis;
+    use crate::refine::sections::Surface;
+
+    /// An underside on a 1 mm grid, `height(r)` above the plane z = 0, with its downward
+    /// normals, as seen from a start axis turned 3 degrees off z.
+    fn underside(radius_mm: f64, height: impl Fn(f64) -> f64, slope: impl Fn(f64) -> f64) -> PreparedSurface {
+        let (mut points, mut normals) = (Vec::new(), Vec::new());
+        let steps = radius_mm as i32;
+        for i in -steps..=steps {
+            for j in -steps..=steps {
+                let (x, y) = (f64::from(i), f64::from(j));
+                let r = x.hypot(y);
+                if r > radius_mm {
+                    continue;
+                }
+                points.push(Point::new(x, y, height(r)));
+                // The surface z = h(r) faces down: normal along (h' x / r, h' y / r, -1).
+                let (nx, ny) = if r > 0.0 { (slope(r) * x / r, slope(r) * y / r) } else { (0.0, 0.0) };
+                normals.push(Vector::new(nx, ny, -1.0).normalize());
+            }
+        }
+        let start = Axis::new(Point::new(0.0, 0.0, 0.0), Vector::new(3f64.to_radians().sin(), 0.0, 3f64.to_radians().cos()));
+        PreparedSurface::new(&Mesh::from_points_and_normals(points, normals), &start, Surface::Both, None).unwrap()
+    }
+
+    fn tilt_from_z_deg(surface: &PreparedSurface, face: &FlatFace) -> f64 {
+        let axis = surface.axis_of(&[face.tilts[0], face.tilts[1], 0.0, 0.0]);
+        axis.line_angle_to_deg(&Axis::new(Point::origin(), Vector::z()))
+    }
+
+    /// A floor 10 mm across beside a wall rising gently from it (`(r - 10)^3`, 2 mm at
+    /// r = 30): the wall's vertices outnumber the floor's, and the face is the floor.
+    #[test]
+    fn a_small_floor_beside_a_gentle_rise_is_the_face() {
+        let rise = |r: f64| 2.0 * ((r - 10.0).max(0.0) / 20.0).powi(3);
+        let rise_slope = |r: f64| 6.0 * (r - 10.0).max(0.0).powi(2) / 8000.0;
+        let surface = underside(30.0, rise, rise_slope);
+        let face = flat_face(&surface, Edge::Base, &[0.0; 4], 10f64.to_radians()).expect("the floor");
+        assert!(tilt_from_z_deg(&surface, &face) < 0.01, "{face:?}");
+        assert!(face.vertex_count >= 300 && face.vertex_count < 1000, "{} vertices", face.vertex_count);
+    }
+
+    /// The lowest patch of a rounded underside (a sphere of 150 mm radius) is flat within
+    /// a tenth of a millimetre over 10 mm, but it curves like a bowl: no face.
+    #[test]
+    fn a_rounded_underside_has_no_flat_face() {
+        let sphere = |r: f64| 150.0 - (150f64.powi(2) - r * r).sqrt();
+        let sphere_slope = |r: f64| r / (150f64.powi(2) - r * r).sqrt();
+        let surface = underside(30.0, sphere, sphere_slope);
+        assert_eq!(flat_face(&surface, Edge::Base, &[0.0; 4], 10f64.to_radians()), None);
+    }
+}
