@@ -164,7 +164,9 @@ struct FittedFace {
 /// the piece) whose normals lie near `face_normal`: the plane through three of them that
 /// holds most of them within [`FACE_INLIER_MM`] with no more of `support` beyond it than
 /// a face the piece stands on would leave (deterministic random samples), then the
-/// total-least-squares plane of those it holds, twice. A floor is a minority among its
+/// total-least-squares plane of those it holds, twice, and once more without those whose
+/// normals turn from it by more than [`FACE_MAX_NORMAL_TURN_FACTOR`] times the median
+/// turn; with the bowl fitted to its vertices' offsets. A floor is a minority among its
 /// piece's outward normals when the piece keeps the turn into the wall: a plane fitted to
 /// them all leans onto the wall, and one through the most of them may cut across the
 /// floor onto the wall's first gentle rise, with the floor's edge beyond it.
