@@ -2,7 +2,7 @@
 //! et al. 2018, section 2.2.1, Fig. 2): the plane through them gives the axis direction,
 //! the least-squares circle in that plane (Kåsa's algebraic fit) its position.
 
-use nalgebra::{Matrix3, SymmetricEigen, Vector3};
+use nalgebra::{Matrix3, Vector3};
 
 use crate::mesh::{Point, Vector};
 use crate::{Error, Result};
@@ -45,15 +45,8 @@ pub fn fit_circle(points: &[Point]) -> Result<Circle> {
             }
         }
     }
-    let mut scatter = Matrix3::zeros();
-    for p in points {
-        let d = p - centroid;
-        scatter += d * d.transpose();
-    }
-    let eigen = SymmetricEigen::new(scatter);
-    let mut order = [0usize, 1, 2];
-    order.sort_by(|&a, &b| eigen.eigenvalues[a].total_cmp(&eigen.eigenvalues[b]));
-    let (middle, largest) = (eigen.eigenvalues[order[1]], eigen.eigenvalues[order[2]]);
+    let (_, [_, middle, largest], [normal, _, u]) = crate::statistics::principal_axes(points.iter().map(|p| (p, 1.0)))
+        .ok_or_else(|| Error::InvalidArgument("the points define no plane".into()))?;
     // Collinear: the second principal extent vanishes next to the first (points within
     // 1e-4 of the spread from a line).
     if middle <= largest * 1e-8 {
@@ -61,8 +54,7 @@ pub fn fit_circle(points: &[Point]) -> Result<Circle> {
             "the points are collinear: they define no circle; pick them spread along the feature".into(),
         ));
     }
-    let normal: Vector3<f64> = eigen.eigenvectors.column(order[0]).into_owned().normalize();
-    let u: Vector3<f64> = eigen.eigenvectors.column(order[2]).into_owned().normalize();
+    let (normal, u) = (normal.normalize(), u.normalize());
     let v = normal.cross(&u);
     // Kåsa: linear least squares in the plane's coordinates.
     let mut normal_matrix = Matrix3::zeros();

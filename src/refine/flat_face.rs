@@ -10,6 +10,7 @@ use rand_chacha::ChaCha8Rng;
 use super::sections::{tilts_along, AxisParameters, CandidateFrame, PreparedSurface};
 use super::tangent::Edge;
 use crate::mesh::{Point, Vector};
+use crate::statistics::principal_axes;
 
 /// A vertex belongs to the face when its normal is within about 25 degrees of the axis,
 /// facing away from the piece (down for the underside, up for the upper face).
@@ -63,11 +64,9 @@ const FACE_MIN_SPREAD_MM: f64 = 1.0;
 pub struct FlatFace {
     /// `(tilt_x, tilt_y)` of the axis perpendicular to the face (start frame).
     pub tilts: [f64; 2],
-    /// Vertices the plane runs through.
-    pub vertex_count: usize,
-    /// Three robust standard deviations of those vertices about the plane, mm.
+    /// Three robust standard deviations of its vertices about the plane, mm.
     pub band_mm: f64,
-    /// Those vertices (start frame).
+    /// The vertices the plane runs through (start frame).
     pub vertices: Vec<Point>,
 }
 
@@ -76,7 +75,7 @@ impl FlatFace {
     /// `weights` (one each: a bootstrap resample's counts); `None` when they weigh
     /// nothing.
     pub fn resampled_tilts(&self, weights: &[f64]) -> Option<[f64; 2]> {
-        let (_, normal, _) = total_least_squares_plane(self.vertices.iter().zip(weights.iter().copied()))?;
+        let (_, _, [normal, _, _]) = principal_axes(self.vertices.iter().zip(weights.iter().copied()))?;
         let axis = CandidateFrame::new(&[self.tilts[0], self.tilts[1], 0.0, 0.0]).direction();
         Some(tilts_along(&if normal.dot(&axis) < 0.0 { -normal } else { normal }))
     }
@@ -137,9 +136,9 @@ pub fn flat_face(surface: &PreparedSurface, edge: Edge, parameters: &AxisParamet
             face.band_mm <= FACE_MAX_BAND_MM && face.bowl_rise_mm <= FACE_MAX_BOWL_RISE_MM && face.bowl_rise_error_mm <= FACE_MAX_BOWL_RISE_ERROR_MM
         })
         .filter(|face| supports(&support, &face.mean, &face.normal))
-        .map(|face| FlatFace { tilts: tilts_along(&(facing * face.normal)), vertex_count: face.vertex_count, band_mm: face.band_mm, vertices: face.vertices })
+        .map(|face| FlatFace { tilts: tilts_along(&(facing * face.normal)), band_mm: face.band_mm, vertices: face.vertices })
         .filter(|face| face.tilts.iter().all(|t| t.is_finite()) && face.tilts[0].hypot(face.tilts[1]) <= max_tilt_rad)
-        .max_by_key(|face| face.vertex_count)
+        .max_by_key(|face| face.vertices.len())
 }
 
 /// A plane fitted to a face: through `mean`, across the unit `normal` (facing away from
@@ -147,7 +146,6 @@ pub fn flat_face(surface: &PreparedSurface, edge: Edge, parameters: &AxisParamet
 struct FittedFace {
     mean: Point,
     normal: Vector,
-    vertex_count: usize,
     /// Three robust standard deviations of the face's vertices about the plane, mm.
     band_mm: f64,
     /// How far the bowl `q r^2` (r from the face's centre) fitted to the vertices' offsets
@@ -247,7 +245,7 @@ fn fit_flat_face(near_axis: &[(Point, Vector)], support: &[&Point], face_normal:
     let mut deviations: Vec<f64> = offsets.iter().map(|r| (r - mean_offset).abs()).collect();
     // 1.4826 turns a median absolute deviation into a normal standard deviation.
     let band_mm = 3.0 * 1.4826 * crate::statistics::quantile(&mut deviations, 0.5);
-    Some(FittedFace { mean: through, normal, vertex_count: held.len(), band_mm, bowl_rise_mm, bowl_rise_error_mm, vertices: held.into_iter().copied().collect() })
+    Some(FittedFace { mean: through, normal, band_mm, bowl_rise_mm, bowl_rise_error_mm, vertices: held.into_iter().copied().collect() })
 }
 
 /// The total-least-squares plane (through the mean, across the normal oriented like
@@ -259,27 +257,8 @@ fn plane_of_held(points: &[&Point], through: &Point, normal: &Vector) -> Option<
     if held.len() < FACE_MIN_VERTICES {
         return None;
     }
-    let (mean, fitted, narrowest_spread_squared) = total_least_squares_plane(held)?;
+    let (mean, [_, narrowest_spread_squared, _], [fitted, _, _]) = principal_axes(held)?;
     (narrowest_spread_squared >= FACE_MIN_SPREAD_MM * FACE_MIN_SPREAD_MM).then(|| (mean, if fitted.dot(normal) < 0.0 { -fitted } else { fitted }))
-}
-
-/// The total-least-squares plane of weighted points: their weighted mean, the unit normal
-/// (either way), and the variance along the narrower of the two directions in the plane.
-/// `None` for no weight.
-fn total_least_squares_plane<'a>(points: impl IntoIterator<Item = (&'a Point, f64)> + Clone) -> Option<(Point, Vector, f64)> {
-    let (sum, weight) = points.clone().into_iter().fold((Vector::zeros(), 0.0), |(sum, total), (p, w)| (sum + w * p.coords, total + w));
-    if !(weight > 0.0) {
-        return None;
-    }
-    let mean = sum / weight;
-    let scatter = points.into_iter().fold(nalgebra::Matrix3::<f64>::zeros(), |sum, (p, w)| {
-        let d = p.coords - mean;
-        sum + w * d * d.transpose()
-    }) / weight;
-    let eigen = scatter.symmetric_eigen();
-    let mut order = [0, 1, 2];
-    order.sort_by(|&i, &j| eigen.eigenvalues[i].total_cmp(&eigen.eigenvalues[j]));
-    Some((Point::from(mean), eigen.eigenvectors.column(order[0]).into_owned(), eigen.eigenvalues[order[1]]))
 }
 
 /// Whether a piece whose vertices `support` samples could stand on the plane through
@@ -370,7 +349,7 @@ mod tests {
         let surface = underside(30.0, rise, rise_slope);
         let face = flat_face(&surface, Edge::Base, &[0.0; 4], 10f64.to_radians()).expect("the floor");
         assert!(tilt_from_z_deg(&surface, &face) < 0.01, "{face:?}");
-        assert!(face.vertex_count >= 300 && face.vertex_count < 1000, "{} vertices", face.vertex_count);
+        assert!(face.vertices.len() >= 300 && face.vertices.len() < 1000, "{} vertices", face.vertices.len());
     }
 
     /// The lowest patch of a rounded underside (a sphere of 150 mm radius) is flat within

@@ -398,7 +398,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                     Some(Edge::Rim) => "upper face",
                     _ => "underside",
                 },
-                face.vertex_count,
+                face.vertices.len(),
                 face.band_mm
             ),
             None => reason,
