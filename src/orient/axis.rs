@@ -61,12 +61,17 @@ impl Axis {
     /// Angle in degrees between the two directions, taking their sign into account
     /// (180 means the same line pointing the other way).
     pub fn angle_to_deg(&self, other: &Axis) -> f64 {
-        self.direction.dot(&other.direction).clamp(-1.0, 1.0).acos().to_degrees()
+        // From the sine and the cosine: the arc cosine of a unit vector's rounded square
+        // norm (1 - 2e-16) is already 1e-6 degrees, so an axis measured against itself
+        // did not come out 0.
+        let sine = self.direction.cross(&other.direction).norm();
+        sine.atan2(self.direction.dot(&other.direction)).to_degrees()
     }
 
     /// Angle in degrees between the two lines, ignoring which way they point.
     pub fn line_angle_to_deg(&self, other: &Axis) -> f64 {
-        self.direction.dot(&other.direction).abs().clamp(-1.0, 1.0).acos().to_degrees()
+        let sine = self.direction.cross(&other.direction).norm();
+        sine.atan2(self.direction.dot(&other.direction).abs()).to_degrees()
     }
 
     /// The same line pointing the other way.
