@@ -25,6 +25,11 @@ use crate::orient::mm_regression::tukey_weight;
 
 /// Normals closer to the axis's direction than this carry no position (floors, lip tops).
 const MIN_HORIZONTAL_NORMAL: f64 = 0.34; // sin 20 degrees
+/// Side of the cubes the faces are gathered in, mm (see [`place_by_normal_lines`]).
+const PATCH_MM: f64 = 2.0;
+/// Width of the bins of the direction a face faces (its normal's azimuth) within a cube,
+/// radians: a skin and the break face beside it are not averaged.
+const FACING_BIN_RAD: f64 = std::f64::consts::FRAC_PI_4;
 /// Fewest lines the placement works on.
 const MIN_LINES: usize = 30;
 /// Pairs of lines tried by the consensus start.
@@ -129,19 +134,40 @@ pub struct NormalLinePlacement {
 pub fn place_by_normal_lines(mesh: &Mesh, surface: &PreparedSurface, tilted: AxisParameters) -> Option<NormalLinePlacement> {
     let frame = CandidateFrame::new(&tilted);
     // Face normals, not vertex normals: a vertex on the border of a skin and a break face
-    // averages the two, and its line misses the axis by much of the radius.
-    let lines: Vec<PlanarLine> = mesh
-        .triangles
-        .iter()
-        .filter_map(|t| {
-            let [a, b, c] = t.map(|v| frame.apply(&surface.points[v as usize]));
-            let n = (b - a).cross(&(c - a));
+    // averages the two, and its line misses the axis by much of the radius. The faces are
+    // gathered into patches of about the corpus's 2 mm cells first (`PATCH_MM`), each
+    // patch's lines by the direction they face: a fine mesh's faces turn with the scan's
+    // noise (0.02 mm over 0.8 mm edges is two degrees), and counted one by one they
+    // made a footprint far along a short arc's lines look fixed (a base placed 56 mm off
+    // from 5,600 lines of 0.8 mm faces, its standard error 0.6 mm).
+    let mut patches: std::collections::HashMap<[i64; 4], (crate::mesh::Vector, crate::mesh::Vector)> = std::collections::HashMap::new();
+    for t in &mesh.triangles {
+        let [a, b, c] = t.map(|v| frame.apply(&surface.points[v as usize]));
+        let n = (b - a).cross(&(c - a));
+        let length = n.norm();
+        let horizontal = n.x.hypot(n.y);
+        if !(horizontal >= MIN_HORIZONTAL_NORMAL * length) || !(length > 0.0) {
+            continue;
+        }
+        let centre = (a.coords + b.coords + c.coords) / 3.0;
+        let facing = (n.y.atan2(n.x) / FACING_BIN_RAD).floor() as i64;
+        let key = [(centre.x / PATCH_MM).floor() as i64, (centre.y / PATCH_MM).floor() as i64, (centre.z / PATCH_MM).floor() as i64, facing];
+        let entry = patches.entry(key).or_insert((crate::mesh::Vector::zeros(), crate::mesh::Vector::zeros()));
+        // Cross products weigh each face by its area, its centre too.
+        entry.0 += n;
+        entry.1 += centre * length;
+    }
+    let mut keyed: Vec<_> = patches.into_iter().collect();
+    keyed.sort_unstable_by_key(|(key, _)| *key);
+    let lines: Vec<PlanarLine> = keyed
+        .into_iter()
+        .filter_map(|(_, (n, weighted_centre))| {
             let length = n.norm();
             let horizontal = n.x.hypot(n.y);
             if !(horizontal >= MIN_HORIZONTAL_NORMAL * length) || !(length > 0.0) {
                 return None;
             }
-            let centre = (a.coords + b.coords + c.coords) / 3.0;
+            let centre = weighted_centre / length;
             Some(PlanarLine { point: [centre.x, centre.y], normal: [n.x / horizontal, n.y / horizontal] })
         })
         .collect();
