@@ -315,7 +315,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                     }
                 };
                 // Never worse than the start by Eq. 7 itself.
-                let (mut tilted, cost, iterations, kept) = if levelled.value <= tangent_start || !tangent_start.is_finite() {
+                let (mut tilted, mut cost, iterations, kept) = if levelled.value <= tangent_start || !tangent_start.is_finite() {
                     (levelled.parameters, levelled.value, levelled.iterations, false)
                 } else {
                     (start, tangent_start, levelled.iterations, true)
@@ -325,6 +325,22 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                 if let Some(face) = face {
                     tilted = [face.tilts[0], face.tilts[1], tilted[2], tilted[3]];
                     flat_face = Some(face);
+                } else if edge == Edge::Rim && !kept {
+                    // Eq. 7 and the edge's tests keep the paper's 12 vertical sections;
+                    // the rim's plane is fitted through as many as the mesh resolves
+                    // (`tangent::plane_section_count`), each extreme one more sample of
+                    // the short arc's sagitta, which alone fixes its tilt about its chord.
+                    // Not where it never beats the start by Eq. 7, nor where it turns the
+                    // levelled axis by more than `MAX_RIM_PLANE_TURN_DEG`.
+                    let sections = tangent::plane_section_count(&surface, options.vertical_section_count);
+                    let levelled = Minimum { parameters: tilted, value: cost, iterations };
+                    let polished = tangent::level_by_plane(&surface, edge, options.tangent_tolerance_mm, sections, &levelled)
+                        .map(|polished| (polished.parameters, tangent.value(&polished.parameters)))
+                        .filter(|(_, polished_cost)| *polished_cost <= tangent_start || !tangent_start.is_finite())
+                        .filter(|(parameters, _)| (parameters[0] - tilted[0]).hypot(parameters[1] - tilted[1]) <= MAX_RIM_PLANE_TURN_DEG.to_radians());
+                    if let Some((parameters, polished_cost)) = polished {
+                        (tilted, cost) = (parameters, polished_cost);
+                    }
                 }
                 // The plane of level extremes and a flat underside are not bounded: an
                 // axis they carry to or past the bound lies where the search was told
@@ -592,6 +608,15 @@ pub(crate) fn choose_criterion(surface: &PreparedSurface, options: &RefineOption
         other => Choice { criterion: other, reason: "asked for".into(), edge: None, levelled: None },
     }
 }
+
+/// Largest turn of a levelled rim's axis by its plane through the finer vertical sections,
+/// degrees. A short rim's plane is barely held about its chord, and the finer sections let
+/// it slide there further (on the refinement corpus, 30 vessels in 0.8 mm cells: a rim
+/// levelled 1.9 degrees off went to 8.9, and the root mean square of the rims' errors
+/// rose 0.95 -> 1.03 degrees while their median fell 0.212 -> 0.199); within a degree
+/// the median gain stays (0.199, 194 of 251 rims within 0.3 degrees instead of 185) and
+/// the root mean square is 0.95.
+const MAX_RIM_PLANE_TURN_DEG: f64 = 1.0;
 
 /// Horizontal sections with points that the circles criterion needs to refine an axis
 /// or to place a levelled one. Fewer leave Eq. 2 free to fit its four parameters (two

@@ -170,7 +170,7 @@ impl HorizontalSection {
 /// bucket and the least of the next, and bucket order is angle order. Where rounding could
 /// blur that (few angles, a gap no wider than a bucket), or an angle is not a number, the
 /// angles are sorted.
-fn largest_angular_gap(angles: &[f64]) -> (f64, f64) {
+pub(crate) fn largest_angular_gap(angles: &[f64]) -> (f64, f64) {
     let by_sorting = || largest_angular_gap_sorted(angles);
     let count = angles.len();
     if count < 64 || angles.iter().any(|a| a.is_nan()) {
@@ -254,6 +254,8 @@ pub struct PreparedSurface {
     pub slab_half_thickness_mm: f64,
     /// The surface choice.
     pub surface: Surface,
+    /// Mean edge length of the mesh, mm; `None` for a point cloud.
+    pub mean_edge_mm: Option<f64>,
 }
 
 /// Vertex normals: the mesh's own, or area-weighted face normals when it has none.
@@ -426,9 +428,10 @@ impl PreparedSurface {
         }
         let low = quantile(&mut heights, 0.05);
         let high = quantile(&mut heights, 0.95);
+        let mean_edge_mm = mean_edge_length(mesh);
         let count = section_count.unwrap_or_else(|| {
             // A cut every two edge lengths keeps neighbouring sections independent.
-            let edge = mean_edge_length(mesh).unwrap_or((high - low) / 12.0);
+            let edge = mean_edge_mm.unwrap_or((high - low) / 12.0);
             (((high - low) / (2.0 * edge)).floor() as usize).clamp(12, 60)
         });
         let count = count.max(1);
@@ -448,6 +451,7 @@ impl PreparedSurface {
             section_heights_mm,
             slab_half_thickness_mm,
             surface,
+            mean_edge_mm,
         })
     }
 

@@ -331,6 +331,32 @@ pub fn level_by_plane(surface: &PreparedSurface, edge: Edge, tolerance_mm: f64, 
     Some(Minimum { parameters, value, iterations: levelled.iterations })
 }
 
+/// Vertical sections for the plane through a rim's level extremes on `surface`: as many
+/// as fit sections [`PLANE_SECTION_EDGES`] mean edge lengths wide along the arc at the
+/// fragment's median radius, at least `at_least` and at most [`MAX_PLANE_SECTIONS`];
+/// `at_least` for a point cloud.
+pub fn plane_section_count(surface: &PreparedSurface, at_least: usize) -> usize {
+    let Some(edge_mm) = surface.mean_edge_mm.filter(|e| *e > 0.0) else { return at_least };
+    let angles: Vec<f64> = surface.points.iter().map(|p| p.y.atan2(p.x)).collect();
+    let (_, gap) = super::sections::largest_angular_gap(&angles);
+    let mut radii: Vec<f64> = surface.points.iter().map(|p| planar_length(p.x, p.y)).collect();
+    let arc_mm = (std::f64::consts::TAU - gap) * crate::statistics::quantile(&mut radii, 0.5);
+    let count = (arc_mm / (PLANE_SECTION_EDGES * edge_mm)).round();
+    if !count.is_finite() {
+        return at_least;
+    }
+    (count as usize).clamp(at_least, MAX_PLANE_SECTIONS.max(at_least))
+}
+
+/// Width of the vertical sections of a rim's plane, in mean edge lengths: as the
+/// horizontal sections are spaced, neighbours share no vertex. On the refinement corpus
+/// (30 vessels, the rims levelled by the tangent plane) the rims within 0.3 degrees went
+/// from 185 to 195 of 251 in 0.8 mm cells and 173 to 177 of 246 in 2 mm cells, against
+/// the paper's 12 sections; three edge lengths gave 187 in 0.8 mm cells.
+const PLANE_SECTION_EDGES: f64 = 2.0;
+/// Most vertical sections of a rim's plane.
+const MAX_PLANE_SECTIONS: usize = 60;
+
 /// Most turns of [`level_by_plane`]: each turn leaves a tenth to a five-hundredth of the
 /// last one's tilt (the level set changes little as the plane turns). Of 100 rims of the
 /// refinement corpus levelled from 3 degrees off, 82 came within 1e-7 radians in three
