@@ -512,7 +512,7 @@ fn a_fine_mesh_places_a_levelled_base_by_patches_of_its_normals() {
     }
 }
 
-/// Eq. 2 fits four parameters: a fragment whose skins give it fewer than six usable
+/// Eq. 2 fits four parameters: a fragment whose skins give it fewer than five usable
 /// horizontal sections (a base with only the foot of its wall) has nothing to refine its
 /// axis by. On the 0.8 mm corpus vessel 5's fragment 23 had one section of eight points,
 /// which the circles fitted to 0.003 mm (the truth: 0.028) with the axis 17.5 mm off,
