@@ -13,8 +13,9 @@
 //! `REFINE_ACCURACY_DEFORMATION=S` scales the vessels' deformation (default 1, 0 for
 //! perfect solids of revolution: what is left is the criteria's own error),
 //! `REFINE_ACCURACY_NOISE_MM=N` the scan noise (default 0.02 mm),
-//! `REFINE_ACCURACY_CELL_MM=C` the mesh cells' size (default 2 mm: 1 mm gives a body
-//! fragment about 4000 vertices instead of 1000),
+//! `REFINE_ACCURACY_CELL_MM=C` the mesh cells' size (default 0.8 mm, the orientation
+//! issue's corpus, `REFINEMENT_CORPUS_CELL_MM`; 2 mm gives the figures measured until
+//! session 19, a body fragment about 1000 vertices instead of 6000),
 //! `REFINE_ACCURACY_START_TILT_DEG=D` the start's tilt (default 3 degrees),
 //! `REFINE_ACCURACY_DUMP=1` prints a line per fragment on stderr (for the pipeline: the
 //! pre-orientation's and the refined axis's errors), and a `FAILED` line with the error
@@ -26,7 +27,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use sherd::statistics::nearest_rank_quantile;
-use sherd::refine::accuracy::{perturbed_axis, refinement_corpus};
+use sherd::refine::accuracy::{perturbed_axis, refinement_corpus, REFINEMENT_CORPUS_CELL_MM};
 use sherd::orient::{mean_point_distance_mm, orient_automatic, Axis, OrientOptions};
 use sherd::profile::measure::{measure, MeasureOptions, Measurements};
 use sherd::refine::{refine, Criterion, RefineOptions};
@@ -194,7 +195,7 @@ fn main() {
         vessels,
         env_number("REFINE_ACCURACY_DEFORMATION", 1.0),
         env_number("REFINE_ACCURACY_NOISE_MM", 0.02),
-        env_number("REFINE_ACCURACY_CELL_MM", 2.0),
+        env_number("REFINE_ACCURACY_CELL_MM", REFINEMENT_CORPUS_CELL_MM),
     );
     eprintln!("{} fragments from {vessels} vessels in {:.1} s", sherds.len(), generated.elapsed().as_secs_f64());
     println!("| method | fragments | within 4 mm | within 4 mm (sector >= 10 deg) | median angle error (deg) | 90th pct angle (deg) | wrong (> 4 mm) not flagged | rim radius error median / 95th pct | diameter interval coverage | axis interval coverage (angle / distance) | median time (ms) |");

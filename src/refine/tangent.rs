@@ -332,9 +332,8 @@ pub fn level_by_plane(surface: &PreparedSurface, edge: Edge, tolerance_mm: f64, 
 }
 
 /// Vertical sections for the plane through a rim's level extremes on `surface`: as many
-/// as fit sections [`PLANE_SECTION_EDGES`] mean edge lengths wide along the arc at the
-/// fragment's median radius, at least `at_least` and at most [`MAX_PLANE_SECTIONS`];
-/// `at_least` for a point cloud.
+/// as fit sections two mean edge lengths wide along the arc at the fragment's median
+/// radius, at least `at_least` and at most 60; `at_least` for a point cloud.
 pub fn plane_section_count(surface: &PreparedSurface, at_least: usize) -> usize {
     let Some(edge_mm) = surface.mean_edge_mm.filter(|e| *e > 0.0) else { return at_least };
     let angles: Vec<f64> = surface.points.iter().map(|p| p.y.atan2(p.x)).collect();
