@@ -16,11 +16,13 @@
 //! fit (Tukey's biweight), leave them out. The position is returned only when its
 //! standard error, inflated for the correlation of neighbouring normals, is small.
 
+use std::collections::HashMap;
+
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use super::sections::{AxisParameters, CandidateFrame, PreparedSurface};
-use crate::mesh::{Mesh, Point};
+use crate::mesh::{Mesh, Point, Vector};
 use crate::orient::mm_regression::tukey_weight;
 
 /// Normals closer to the axis's direction than this carry no position (floors, lip tops).
@@ -140,7 +142,9 @@ pub fn place_by_normal_lines(mesh: &Mesh, surface: &PreparedSurface, tilted: Axi
     // noise (0.02 mm over 0.8 mm edges is two degrees), and counted one by one they
     // made a footprint far along a short arc's lines look fixed (a base placed 56 mm off
     // from 5,600 lines of 0.8 mm faces, its standard error 0.6 mm).
-    let mut patches: std::collections::HashMap<[i64; 4], (crate::mesh::Vector, crate::mesh::Vector)> = std::collections::HashMap::new();
+    // Per patch (cube and facing): the sum of its faces' cross products and of their
+    // centres weighted by the cross products' lengths.
+    let mut patches: HashMap<[i64; 4], (Vector, Vector)> = HashMap::new();
     for t in &mesh.triangles {
         let [a, b, c] = t.map(|v| frame.apply(&surface.points[v as usize]));
         let n = (b - a).cross(&(c - a));
@@ -152,8 +156,7 @@ pub fn place_by_normal_lines(mesh: &Mesh, surface: &PreparedSurface, tilted: Axi
         let centre = (a.coords + b.coords + c.coords) / 3.0;
         let facing = (n.y.atan2(n.x) / FACING_BIN_RAD).floor() as i64;
         let key = [(centre.x / PATCH_MM).floor() as i64, (centre.y / PATCH_MM).floor() as i64, (centre.z / PATCH_MM).floor() as i64, facing];
-        let entry = patches.entry(key).or_insert((crate::mesh::Vector::zeros(), crate::mesh::Vector::zeros()));
-        // Cross products weigh each face by its area, its centre too.
+        let entry = patches.entry(key).or_insert((Vector::zeros(), Vector::zeros()));
         entry.0 += n;
         entry.1 += centre * length;
     }
