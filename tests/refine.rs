@@ -556,7 +556,7 @@ fn a_rims_plane_through_finer_sections_holds_its_tilt_better() {
             level_by_plane(&surface, Edge::Rim, 3.0, sections, &levelled)
                 .map(|plane| surface.axis_of(&plane.parameters).line_angle_to_deg(&sherd.truth.axis))
         };
-        let (Some(coarse), Some(fine)) = (angle(12), angle(plane_section_count(&surface, 12))) else { continue };
+        let (Some(coarse), Some(fine)) = (angle(12), angle(plane_section_count(&surface, Edge::Rim, 12))) else { continue };
         // Only rims level enough for the tangent plane to hold them: within a degree.
         if coarse.min(fine) > 1.0 {
             continue;

@@ -193,7 +193,11 @@ impl Refinement {
 
 /// The flag of an automatic refinement that kept its start because nothing fixes a better
 /// axis.
-const NOTHING_TO_REFINE_BY: &str = "nothing to refine the axis by: no level rim or base, and fewer than five horizontal sections cut a wall skin (a floor, the underside of a shallow dish, the foot of a wall); the axis is the start's";
+fn nothing_to_refine_by() -> String {
+    format!(
+        "nothing to refine the axis by: no level rim or base, and fewer than {MIN_REFINING_SECTIONS} horizontal sections cut a wall skin (a floor, the underside of a shallow dish, the foot of a wall); the axis is the start's"
+    )
+}
 
 /// Largest search bound a refinement accepts, degrees: past it the tilts leave the
 /// neighbourhood the pre-orientation vouches for.
@@ -269,7 +273,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
             if options.criterion == Criterion::Auto && (!start_cost.is_finite() || usable_section_count(&objective, &start) < MIN_REFINING_SECTIONS) {
                 // Asked to choose, `refine` says the fragment gives it nothing to work
                 // with rather than failing: the caller keeps the pre-orientation, flagged.
-                flag = Some(NOTHING_TO_REFINE_BY.to_string());
+                flag = Some(nothing_to_refine_by());
                 (start, start_cost, start_cost, 0, true)
             } else {
                 let result = run_guarded(&objective, start, &settings)?;
@@ -332,7 +336,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                     // the short arc's sagitta, which alone fixes its tilt about its chord.
                     // Not where it never beats the start by Eq. 7, nor where it turns the
                     // levelled axis by more than `MAX_RIM_PLANE_TURN_DEG`.
-                    let sections = tangent::plane_section_count(&surface, options.vertical_section_count);
+                    let sections = tangent::plane_section_count(&surface, edge, options.vertical_section_count);
                     let levelled = Minimum { parameters: tilted, value: cost, iterations };
                     let polished = tangent::level_by_plane(&surface, edge, options.tangent_tolerance_mm, sections, &levelled)
                         .map(|polished| (polished.parameters, tangent.value(&polished.parameters)))

@@ -331,11 +331,13 @@ pub fn level_by_plane(surface: &PreparedSurface, edge: Edge, tolerance_mm: f64, 
     Some(Minimum { parameters, value, iterations: levelled.iterations })
 }
 
-/// Vertical sections for the plane through a rim's level extremes on `surface`: as many
-/// as fit sections two mean edge lengths wide along the arc at the fragment's median
-/// radius, at least `at_least` and at most 60; `at_least` for a point cloud.
-pub fn plane_section_count(surface: &PreparedSurface, at_least: usize) -> usize {
-    let Some(edge_mm) = surface.mean_edge_mm.filter(|e| *e > 0.0) else { return at_least };
+/// Vertical sections for the plane through the level extremes of `edge` on `surface`: for
+/// a rim, as many as fit sections two mean edge lengths wide along the arc at the
+/// fragment's median radius, at least `at_least` and at most 60; `at_least` for a base
+/// (its tilts come from its flat underside, or from Eq. 7's sections) and for a point
+/// cloud.
+pub fn plane_section_count(surface: &PreparedSurface, edge: Edge, at_least: usize) -> usize {
+    let Some(edge_mm) = surface.mean_edge_mm.filter(|e| *e > 0.0 && edge == Edge::Rim) else { return at_least };
     let angles: Vec<f64> = surface.points.iter().map(|p| p.y.atan2(p.x)).collect();
     let (_, gap) = super::sections::largest_angular_gap(&angles);
     let mut radii: Vec<f64> = surface.points.iter().map(|p| planar_length(p.x, p.y)).collect();

@@ -27,7 +27,7 @@ use super::circles::CirclesObjective;
 use super::objective::{minimize, FreeParameters, Objective, SearchSettings};
 use super::sections::{AxisParameters, PreparedSurface};
 use crate::statistics::quantile;
-use super::tangent::{plane_section_count, Edge, TangentObjective};
+use super::tangent::{plane_section_count, TangentObjective};
 use super::{
     choose_criterion, place_where_sections_allow, place_with, radial_curvature, search_shifts, Criterion, RefineOptions,
     MIN_PLACING_CURVATURE,
@@ -215,10 +215,7 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
     let tangent = match (method, edge) {
         (Criterion::Tangent, Some(edge)) if options.free != FreeParameters::ShiftsOnly => {
             // A rim's plane runs through as many sections as the refinement fitted it to.
-            let sections = match edge {
-                Edge::Rim => plane_section_count(&surface, options.vertical_section_count),
-                Edge::Base => options.vertical_section_count,
-            };
+            let sections = plane_section_count(&surface, edge, options.vertical_section_count);
             Some(TangentObjective::new(&surface, edge, options.tangent_tolerance_mm, sections))
         }
         _ => None,
