@@ -209,7 +209,8 @@ enum SherdCriterion
    */
   SHERD_CRITERION_TANGENT = 3,
   /**
-   * The tangent plane when the fragment keeps a level rim or base, circles otherwise.
+   * The tangent plane when the fragment keeps a level rim or base; otherwise circles,
+   * averaged with the profile criterion where the two agree within 5 degrees.
    */
   SHERD_CRITERION_AUTO = 4,
 };

@@ -569,3 +569,38 @@ fn a_rims_plane_through_finer_sections_holds_its_tilt_better() {
     assert!(rims >= 60, "{rims} rims");
     assert!(fine_within >= coarse_within + 3, "finer sections {fine_within}, 12 sections {coarse_within} of {rims} rims within 0.3 degrees");
 }
+
+#[test]
+fn body_sherds_take_the_mean_of_the_circles_and_the_profile() {
+    use sherd::synth::SherdPart;
+    // Without a level rim or base, Eq. 2 reads the horizontal sections and the profile
+    // criterion the vertical ones; the pot's deformation misleads them differently.
+    let corpus = sherd::refine::accuracy::refinement_corpus(6, 1.0, 0.02, 0.8);
+    let (mut circles_angles, mut auto_angles) = (Vec::new(), Vec::new());
+    for (id, sherd) in corpus.iter().filter(|(_, s)| s.truth.part == SherdPart::Body) {
+        let centroid = Point::from(sherd.mesh.positions.iter().map(|p| p.coords).sum::<Vector>() / sherd.mesh.positions.len() as f64);
+        let azimuth = (*id as f64 * 2.4).rem_euclid(std::f64::consts::TAU);
+        let start = sherd::refine::accuracy::perturbed_axis(&sherd.truth.axis.normalized(&centroid), azimuth, 3.0, azimuth + 1.0, 2.0);
+        let angle = |criterion| {
+            refine(&sherd.mesh, &start, &RefineOptions { criterion, ..Default::default() }).map(|r| r.axis.line_angle_to_deg(&sherd.truth.axis))
+        };
+        let (Ok(circles), Ok(auto)) = (angle(Criterion::Circles), angle(Criterion::Auto)) else { continue };
+        circles_angles.push(circles);
+        auto_angles.push(auto);
+    }
+    let median = |angles: &[f64]| {
+        let mut sorted = angles.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        sorted[sorted.len() / 2]
+    };
+    let within = |angles: &[f64], limit: f64| angles.iter().filter(|a| **a < limit).count();
+    for limit in [0.3, 0.5, 1.0] {
+        println!("within {limit} deg: circles {}, auto {}", within(&circles_angles, limit), within(&auto_angles, limit));
+    }
+    let (circles_median, auto_median) = (median(&circles_angles), median(&auto_angles));
+    println!("{} body sherds: median {circles_median:.3} deg by circles, {auto_median:.3} by auto", auto_angles.len());
+    assert!(auto_angles.len() >= 60, "{} body sherds", auto_angles.len());
+    assert!(auto_median < 0.9 * circles_median, "auto {auto_median:.3} deg, circles {circles_median:.3} deg on median");
+    let (circles_within, auto_within) = (within(&circles_angles, 1.0), within(&auto_angles, 1.0));
+    assert!(auto_within >= circles_within + 4, "within a degree: auto {auto_within}, circles {circles_within}");
+}

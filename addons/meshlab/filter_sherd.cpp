@@ -664,7 +664,8 @@ RichParameterList FilterSherdPlugin::initParameterList(const QAction* action, co
 		                       "Circles: radius variance of horizontal sections (Eq. 2). Pareto: circle centres "
 		                       "and residuals (Eq. 3-4). Profile: superposition of vertical profiles (Eq. 5-6). "
 		                       "Tangent: the plane of a level rim or base (Eq. 7). Auto: tangent when the "
-		                       "fragment keeps a level rim or base, circles otherwise."));
+		                       "fragment keeps a level rim or base, otherwise circles averaged with the profile "
+		                       "where the two agree."));
 		list.addParam(RichEnum("surface", SHERD_SURFACE_BOTH, surfaces, "Surface",
 		                       "The skin of the vessel the criterion looks at."));
 		list.addParam(RichInt("section_count", 0, "Sections",

@@ -29,7 +29,8 @@ pub enum SherdCriterion {
     Profile = 2,
     /// Tangent plane to the rim or base (Eq. 7), then circles for the position.
     Tangent = 3,
-    /// The tangent plane when the fragment keeps a level rim or base, circles otherwise.
+    /// The tangent plane when the fragment keeps a level rim or base; otherwise circles,
+    /// averaged with the profile criterion where the two agree within 5 degrees.
     Auto = 4,
 }
 

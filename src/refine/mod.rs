@@ -8,8 +8,9 @@
 //!
 //! with Chernov's circle fits ([`circle_fit`]), the sections they share ([`sections`])
 //! and bootstrap intervals ([`uncertainty`]). [`refine`] runs one criterion, or picks one
-//! ([`Criterion::Auto`]), and never returns an axis its own criterion rates worse than
-//! the start.
+//! ([`Criterion::Auto`], which on a fragment with no level rim or base averages the
+//! circles' and the profile's directions), and never returns an axis its own criterion
+//! rates worse than the start.
 
 pub mod accuracy;
 pub mod circle_fit;
@@ -53,8 +54,10 @@ pub enum Criterion {
     Profile,
     /// Tangent plane to the rim or base (Eq. 7), then the circles criterion for the position.
     Tangent,
-    /// The tangent plane where the fragment keeps a level rim or base, the circles
-    /// criterion otherwise.
+    /// The tangent plane where the fragment keeps a level rim or base; otherwise the
+    /// circles criterion, its direction averaged with the profile superposition's where
+    /// the two agree within 5 degrees (the report's method is then `Circles`, its reason
+    /// says so).
     #[default]
     Auto,
 }
@@ -266,6 +269,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
     let mut pareto_chosen = None;
     let mut flag = None;
     let mut flat_face = None;
+    let mut averaged_reason = None;
     let (parameters, start_cost, cost, iterations, kept_start) = match method {
         Criterion::Circles | Criterion::Auto => {
             let objective = circles::CirclesObjective::new(&surface);
@@ -276,7 +280,27 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                 flag = Some(nothing_to_refine_by());
                 (start, start_cost, start_cost, 0, true)
             } else {
-                let result = run_guarded(&objective, start, &settings)?;
+                // Asked to choose, the profile criterion runs beside Eq. 2 (on the other
+                // core where there is one: neither needs the other's result).
+                let asked_to_choose = options.criterion == Criterion::Auto && options.free == FreeParameters::All;
+                let (result, by_profile) = match asked_to_choose {
+                    true => rayon::join(|| run_guarded(&objective, start, &settings), || profile_from_start(&surface, options, &settings)),
+                    false => (run_guarded(&objective, start, &settings), None),
+                };
+                let mut result = result?;
+                if !result.4 {
+                    let averaged = by_profile.and_then(|by_profile| averaged_with_profile(&objective, &result, by_profile, &settings));
+                    if let Some((averaged, averaged_cost, iterations, between_deg)) = averaged {
+                        result = (averaged, result.1, averaged_cost, result.3 + iterations, false);
+                        averaged_reason = Some(format!(
+                            "no level rim or base: horizontal circles (Eq. 2) and profile superposition (Eq. {}), {between_deg:.2} degrees apart, their directions averaged and placed by Eq. 2",
+                            match options.profile_method {
+                                ProfileMethod::ReferenceProfile { .. } => 5,
+                                _ => 6,
+                            }
+                        ));
+                    }
+                }
                 let curvature = radial_curvature(&objective, &result.0);
                 if curvature < MIN_PLACING_CURVATURE {
                     flag = Some(format!(
@@ -421,7 +445,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                 face.vertices.len(),
                 face.band_mm
             ),
-            None => reason,
+            None => averaged_reason.unwrap_or(reason),
         },
         surface: options.surface,
         parameters: options.clone(),
@@ -443,6 +467,64 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
         },
     };
     Ok(Refinement { axis: refined, report, pareto_front, pareto_chosen })
+}
+
+/// Largest angle between the axes of the circles criterion and of the profile
+/// superposition that [`averaged_with_profile`] averages, degrees: farther apart, one of
+/// them at least has run off (on the refinement corpus the pairs 6-16 degrees apart
+/// averaged to axes 2.7-7.6 degrees off).
+const MAX_CRITERIA_DISAGREEMENT_DEG: f64 = 5.0;
+
+/// At most this many skin vertices carry the profile criterion that [`Criterion::Auto`]
+/// averages with Eq. 2 (every k-th skin vertex): the deformation, not the count, limits
+/// what a fragment's profile says about its axis, and on the 10k-vertex body sherd of
+/// `benches/refine.rs` the profile search took 177 ms on all 8,000 skin vertices.
+const PROFILE_MAX_SKIN_VERTICES: usize = 3000;
+
+/// The profile superposition (Eq. 5 or 6, [`ProfileMethod`]) minimised from the start of
+/// `surface` over at most [`PROFILE_MAX_SKIN_VERTICES`] of its skin vertices: the
+/// parameters and the iterations; `None` when it fails or keeps the start.
+fn profile_from_start(surface: &PreparedSurface, options: &RefineOptions, settings: &SearchSettings) -> Option<(AxisParameters, u64)> {
+    let thinned = surface.with_skin_vertices_at_most(PROFILE_MAX_SKIN_VERTICES);
+    let objective = profile::ProfileObjective { surface: &thinned, method: options.profile_method };
+    let (by_profile, _, _, iterations, kept) = run_guarded(&objective, [0.0; 4], settings).ok()?;
+    (!kept).then_some((by_profile, iterations))
+}
+
+/// The circles criterion's result `circles_result` (Eq. 2 minimised from the start, as
+/// [`run_guarded`] gives it) with its direction averaged with the profile criterion's
+/// `by_profile` (its parameters and iterations, [`profile_from_start`]) and placed again by
+/// Eq. 2 (two shifts): the parameters, their Eq. 2 value, the iterations and the angle
+/// between the two criteria's axes, degrees. `None` when the two lie more than
+/// [`MAX_CRITERIA_DISAGREEMENT_DEG`] apart, or when the averaged axis's Eq. 2 is worse than
+/// the start's.
+///
+/// On a fragment with no level rim or base the two criteria read different evidence: Eq. 2
+/// the horizontal sections' circles, the profile criterion the vertical sections' shape.
+/// The vessel's deformation misleads them differently (the ovality moves a short arc's
+/// circle centres, the wobble bends its profiles), so their errors partly cancel. On the
+/// refinement corpus (`examples/refine_accuracy.rs 10 auto`, 0.8 mm cells) the 176
+/// fragments refined by circles went from 17 to 26 within 0.3 degrees (all fragments: 146
+/// to 155, and on the next ten vessels 157 to 164); within 4 mm they went from 160 to 166
+/// here but the next ten vessels lost five (BENCHMARKS.md, session 20): the gain is the
+/// direction's.
+fn averaged_with_profile(
+    circles: &circles::CirclesObjective,
+    circles_result: &(AxisParameters, f64, f64, u64, bool),
+    (by_profile, profile_iterations): (AxisParameters, u64),
+    settings: &SearchSettings,
+) -> Option<(AxisParameters, f64, u64, f64)> {
+    let &(by_circles, start_cost, _, _, _) = circles_result;
+    let circles_direction = sections::CandidateFrame::new(&by_circles).direction();
+    let profile_direction = sections::CandidateFrame::new(&by_profile).direction();
+    let between_deg = circles_direction.cross(&profile_direction).norm().atan2(circles_direction.dot(&profile_direction)).to_degrees();
+    if between_deg > MAX_CRITERIA_DISAGREEMENT_DEG {
+        return None;
+    }
+    let [tilt_x, tilt_y] = sections::tilts_along(&(circles_direction + profile_direction));
+    let (placed, placing_iterations) = search_shifts(circles, [tilt_x, tilt_y, by_circles[2], by_circles[3]], settings)?;
+    let cost = circles.value(&placed);
+    (cost <= start_cost).then_some((placed, cost, profile_iterations + placing_iterations, between_deg))
 }
 
 /// The axis with the tilts of `tilted` placed by the circles criterion (two shifts), and
@@ -552,7 +634,7 @@ fn run_guarded<O: Objective>(
 
 /// The criterion [`refine`] would run on `mesh` from `axis` (the one of `options`, or
 /// the one `Criterion::Auto` picks: the tangent plane where a level rim or base is
-/// preserved, the circles otherwise), without running it.
+/// preserved, the circles (with the profile) otherwise), without running it.
 pub fn chosen_criterion(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Result<Criterion> {
     validate(mesh, axis, options)?;
     let surface = PreparedSurface::new(mesh, axis, options.surface, options.section_count)?;

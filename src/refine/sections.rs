@@ -475,6 +475,26 @@ impl PreparedSurface {
         [tilt_x, tilt_y, crossing.x, crossing.y]
     }
 
+    /// A copy keeping every k-th skin vertex on its skin (the others, and the triangles
+    /// they touch, leave the skins), so that at most `count` remain; the copy itself when
+    /// there are no more.
+    pub fn with_skin_vertices_at_most(&self, count: usize) -> PreparedSurface {
+        let skin_count = self.skin_vertex_count();
+        if skin_count <= count {
+            return self.clone();
+        }
+        let stride = skin_count.div_ceil(count.max(1));
+        let mut thinned = self.clone();
+        for (k, skin) in thinned.skins.iter_mut().filter(|skin| skin.is_some()).enumerate() {
+            if k % stride != 0 {
+                *skin = None;
+            }
+        }
+        let skins = &thinned.skins;
+        thinned.skin_triangles.retain(|(triangle, _)| triangle.iter().all(|&v| skins[v as usize].is_some()));
+        thinned
+    }
+
     /// The number of vertices on the chosen wall skins.
     pub fn skin_vertex_count(&self) -> usize {
         self.skins.iter().filter(|s| s.is_some()).count()

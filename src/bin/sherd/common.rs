@@ -36,7 +36,8 @@ impl Units {
 /// The refinement criterion, or none.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum RefineChoice {
-    /// Tangent plane where a level rim or base is kept, circles otherwise.
+    /// Tangent plane where a level rim or base is kept; otherwise circles, averaged with the
+    /// profile criterion where the two agree.
     Auto,
     Circles,
     Pareto,
