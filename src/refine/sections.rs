@@ -813,6 +813,26 @@ mod tests {
     }
 
     #[test]
+    fn a_thinned_surface_keeps_every_kth_skin_vertex_and_only_whole_skin_triangles() {
+        use crate::synth::{synthetic_sherd, SherdOptions, SherdPart};
+        let sherd = synthetic_sherd(3, &SherdOptions { target_faces: 6_000, ..SherdOptions::for_part(SherdPart::Body) });
+        let surface = PreparedSurface::new(&sherd.mesh, &sherd.truth.axis, Surface::Both, None).unwrap();
+        let skin_count = surface.skin_vertex_count();
+        assert!(skin_count > 2000, "{skin_count} skin vertices");
+        let thinned = surface.with_skin_vertices_at_most(1000);
+        let stride = skin_count.div_ceil(1000);
+        assert_eq!(thinned.skin_vertex_count(), skin_count.div_ceil(stride), "of {skin_count}, every {stride}th");
+        assert!(thinned.skin_vertex_count() <= 1000);
+        // Kept vertices keep their skin; nothing joins a skin; the points are untouched.
+        for (kept, original) in thinned.skins.iter().zip(&surface.skins) {
+            assert!(kept.is_none() || kept == original);
+        }
+        assert_eq!(thinned.points, surface.points);
+        assert!(thinned.skin_triangles.iter().all(|(t, skin)| t.iter().all(|&v| thinned.skins[v as usize] == Some(*skin))));
+        assert_eq!(surface.with_skin_vertices_at_most(skin_count).skins, surface.skins);
+    }
+
+    #[test]
     fn plane_counts_from_the_spacing_equal_the_binary_search() {
         let even: Vec<f64> = (0..37).map(|i| -12.3 + 41.7 * i as f64 / 36.0).collect();
         let uneven = [-3.0, -1.0, 0.5, 0.5, 7.0];
