@@ -34,7 +34,7 @@ use sherd::refine::accuracy::{perturbed_axis, refinement_corpus, REFINEMENT_CORP
 use sherd::orient::{mean_point_distance_mm, orient_automatic, Axis, OrientOptions};
 use sherd::profile::measure::{measure, MeasureOptions, Measurements};
 use sherd::refine::{refine, Criterion, RefineOptions};
-use sherd::mesh::{Point, Vector};
+use sherd::mesh::Point;
 use sherd::synth::{SherdPart, SynthSherd};
 
 /// Error of the simulated pre-orientation (`REFINE_ACCURACY_START_TILT_DEG` overrides the tilt).
@@ -88,9 +88,10 @@ fn perturbed(truth: &Axis, sherd_centre: &Point, seed: u64) -> Axis {
     perturbed_axis(truth, tilt_azimuth, tilt_deg, shift_azimuth, START_SHIFT_MM)
 }
 
-/// The mean of `points`.
-fn centroid(points: &[Point]) -> Point {
-    Point::from(points.iter().map(|p| p.coords).sum::<Vector>() / points.len().max(1) as f64)
+/// The centroid of `mesh`'s vertices (the corpus's fragments and the SfS++ pieces are
+/// never empty).
+fn centroid(mesh: &sherd::mesh::Mesh) -> Point {
+    mesh.centroid().unwrap_or_else(Point::origin)
 }
 
 /// How far `axis` passes from `truth` in the plane across `truth` through `at`, mm
@@ -123,9 +124,9 @@ fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
                                 mean_point_distance_mm(&sherd.mesh.positions, &r.axis, &truth.axis),
                                 r.report.flagged,
                                 truth.sector_angle_deg,
-                                offset_at(&orientation.axis, &truth.axis, &centroid(&sherd.mesh.positions)),
+                                offset_at(&orientation.axis, &truth.axis, &centroid(&sherd.mesh)),
                                 offset_at(&orientation.axis, &truth.axis, &truth.axis.point),
-                                truth.axis.height_of(&centroid(&sherd.mesh.positions))
+                                truth.axis.height_of(&centroid(&sherd.mesh))
                             );
                         }
                         // As the record's status: the orientation's verdict and the
@@ -135,7 +136,7 @@ fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
                     Err(_) => (orientation.axis, true, "refine failed".into()),
                 }
             }
-            Err(_) => (perturbed(&truth.axis, &centroid(&sherd.mesh.positions), seed), true, "orient failed".into()),
+            Err(_) => (perturbed(&truth.axis, &centroid(&sherd.mesh), seed), true, "orient failed".into()),
         }
     } else {
         let criterion = match method {
@@ -145,7 +146,7 @@ fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
             "tangent" => Criterion::Tangent,
             _ => Criterion::Auto,
         };
-        let start = perturbed(&truth.axis, &centroid(&sherd.mesh.positions), seed);
+        let start = perturbed(&truth.axis, &centroid(&sherd.mesh), seed);
         match refine(&sherd.mesh, &start, &RefineOptions { criterion, ..Default::default() }) {
             Ok(r) => {
                 if std::env::var_os("REFINE_ACCURACY_DUMP").is_some() {
@@ -255,7 +256,7 @@ fn real_sherds() {
     println!("|---|---|---|---|---|---|");
     for piece in pieces {
         let (mesh, reference) = (&piece.cloud, &piece.reference);
-        let start = perturbed(reference, &centroid(&mesh.positions), 1);
+        let start = perturbed(reference, &centroid(mesh), 1);
         let angle = |criterion: Criterion| match refine(mesh, &start, &RefineOptions { criterion, ..Default::default() }) {
             Ok(r) => format!("{:.2}", r.axis.line_angle_to_deg(reference)),
             Err(e) => format!("error: {e}"),

@@ -578,7 +578,7 @@ fn body_sherds_take_the_mean_of_the_circles_and_the_profile() {
     let corpus = sherd::refine::accuracy::refinement_corpus(6, 1.0, 0.02, 0.8);
     let (mut circles_angles, mut auto_angles) = (Vec::new(), Vec::new());
     for (id, sherd) in corpus.iter().filter(|(_, s)| s.truth.part == SherdPart::Body) {
-        let centroid = Point::from(sherd.mesh.positions.iter().map(|p| p.coords).sum::<Vector>() / sherd.mesh.positions.len() as f64);
+        let centroid = sherd.mesh.centroid().unwrap();
         let azimuth = (*id as f64 * 2.4).rem_euclid(std::f64::consts::TAU);
         let start = sherd::refine::accuracy::perturbed_axis(&sherd.truth.axis.normalized(&centroid), azimuth, 3.0, azimuth + 1.0, 2.0);
         let angle = |criterion| {

@@ -25,6 +25,13 @@ pub struct AxisRecord {
     pub direction: [f64; 3],
 }
 
+/// Angle in degrees between two directions (unit or not), from the sine and the cosine:
+/// the arc cosine of a unit vector's rounded square norm (1 - 2e-16) is already 1e-6
+/// degrees, so a direction measured against itself did not come out 0.
+pub fn angle_between_deg(a: &Vector, b: &Vector) -> f64 {
+    a.cross(b).norm().atan2(a.dot(b)).to_degrees()
+}
+
 impl Axis {
     /// An axis through `point` along `direction` (normalised here).
     pub fn new(point: Point, direction: Vector) -> Self {
@@ -61,17 +68,14 @@ impl Axis {
     /// Angle in degrees between the two directions, taking their sign into account
     /// (180 means the same line pointing the other way).
     pub fn angle_to_deg(&self, other: &Axis) -> f64 {
-        // From the sine and the cosine: the arc cosine of a unit vector's rounded square
-        // norm (1 - 2e-16) is already 1e-6 degrees, so an axis measured against itself
-        // did not come out 0.
-        let sine = self.direction.cross(&other.direction).norm();
-        sine.atan2(self.direction.dot(&other.direction)).to_degrees()
+        angle_between_deg(&self.direction, &other.direction)
     }
 
     /// Angle in degrees between the two lines, ignoring which way they point.
     pub fn line_angle_to_deg(&self, other: &Axis) -> f64 {
-        let sine = self.direction.cross(&other.direction).norm();
-        sine.atan2(self.direction.dot(&other.direction).abs()).to_degrees()
+        let other = other.direction.into_inner();
+        let facing = if self.direction.dot(&other) < 0.0 { -other } else { other };
+        angle_between_deg(&self.direction, &facing)
     }
 
     /// The same line pointing the other way.

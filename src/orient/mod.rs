@@ -25,7 +25,7 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-pub use axis::{mean_point_distance_mm, Axis, AxisRecord};
+pub use axis::{angle_between_deg, mean_point_distance_mm, Axis, AxisRecord};
 pub use surfaces::{segment_surfaces, Skin};
 pub use verdict::{Verdict, VerdictThresholds};
 

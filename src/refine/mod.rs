@@ -517,7 +517,7 @@ fn averaged_with_profile(
     let &(by_circles, start_cost, _, _, _) = circles_result;
     let circles_direction = sections::CandidateFrame::new(&by_circles).direction();
     let profile_direction = sections::CandidateFrame::new(&by_profile).direction();
-    let between_deg = circles_direction.cross(&profile_direction).norm().atan2(circles_direction.dot(&profile_direction)).to_degrees();
+    let between_deg = crate::orient::angle_between_deg(&circles_direction, &profile_direction);
     if between_deg > MAX_CRITERIA_DISAGREEMENT_DEG {
         return None;
     }
