@@ -91,6 +91,22 @@ impl SectionCandidates {
         }
     }
 
+    /// The largest height signed outward (up for a rim, down for a base) that a point
+    /// from the `i`-th on can reach under `frame`, as a function of `i` (see [`Self::extreme`]);
+    /// `None` for an upside-down frame (never searched), which would reverse the order:
+    /// every point is moved then.
+    fn outward_bound(&self, frame: &CandidateFrame, edge: Edge) -> Option<impl Fn(usize) -> f64 + '_> {
+        let d = frame.direction();
+        if !(d.z > 0.0) {
+            return None;
+        }
+        let offset = frame.apply(&Point::origin()).z;
+        let tilt = d.x.hypot(d.y);
+        let centred = d.x * self.centre_xy[0] + d.y * self.centre_xy[1] + offset;
+        let outward = edge.outward();
+        Some(move |i: usize| outward * (d.z * self.points[i].z + centred) + (tilt * self.reach_mm[i] + self.slack_mm))
+    }
+
     /// The extreme point under `frame`, the same as the `max_by`/`min_by` over all
     /// points in their section order (the last highest, the first lowest), found
     /// without moving most of them: under a frame with direction `d` and offset `o`
@@ -98,23 +114,13 @@ impl SectionCandidates {
     /// `d_z p_z + d_xy . c + |d_xy| reach + o` (at least, with `-|d_xy| reach`, for a
     /// base); the points come extreme first, so the bound only shrinks along them.
     fn extreme(&self, frame: &CandidateFrame, edge: Edge) -> Option<Point> {
-        let d = frame.direction();
-        let offset = frame.apply(&Point::origin()).z;
-        let tilt = d.x.hypot(d.y);
-        let centred = d.x * self.centre_xy[0] + d.y * self.centre_xy[1] + offset;
-        // Upside-down frames (never searched) would reverse the order: scan them all.
-        let bounded = d.z > 0.0;
+        let bound = self.outward_bound(frame, edge);
         // (height under the frame, order, index): only the heights are compared, the
         // winner alone is moved whole.
         let mut best: Option<(f64, usize, usize)> = None;
         for (i, (p, &order)) in self.points.iter().zip(&self.order).enumerate() {
-            if let (true, Some((found_z, _, _))) = (bounded, &best) {
-                let spread = tilt * self.reach_mm[i] + self.slack_mm;
-                let beyond = match edge {
-                    Edge::Rim => d.z * p.z + centred + spread < *found_z,
-                    Edge::Base => d.z * p.z + centred - spread > *found_z,
-                };
-                if beyond {
+            if let (Some(bound), Some((found_z, _, _))) = (&bound, &best) {
+                if bound(i) < edge.outward() * found_z {
                     break;
                 }
             }
@@ -142,15 +148,11 @@ impl SectionCandidates {
     fn lip_band(&self, frame: &CandidateFrame, edge: Edge, band_mm: f64) -> Option<(Point, Vec<Point>)> {
         let extreme = self.extreme(frame, edge)?;
         let outward = edge.outward();
-        let d = frame.direction();
-        let offset = frame.apply(&Point::origin()).z;
-        let tilt = d.x.hypot(d.y);
-        let centred = d.x * self.centre_xy[0] + d.y * self.centre_xy[1] + offset;
+        let bound = self.outward_bound(frame, edge);
         let lowest = outward * extreme.z - band_mm;
         let mut band = Vec::new();
         for (i, p) in self.points.iter().enumerate() {
-            // As in `extreme`: past this bound no later point reaches the band.
-            if d.z > 0.0 && outward * (d.z * p.z + centred) + tilt * self.reach_mm[i] + self.slack_mm < lowest {
+            if bound.as_ref().is_some_and(|bound| bound(i) < lowest) {
                 break;
             }
             let q = frame.apply(p);
