@@ -375,9 +375,9 @@ impl TangentObjective {
     /// reads that badly. On the refinement corpus (`examples/refine_accuracy.rs 20 auto`,
     /// 0.8 mm cells, 0.02 mm noise) the rims levelled by the tangent plane were on average
     /// 0.287 and 0.402 degrees off on the two sets of ten vessels through their
-    /// extremes, 0.212 and 0.342 through their crests. The noise is what the crests
-    /// average: on the first ten vessels without it 61 of the 62 rims levelled through
-    /// their extremes came within 0.3 degrees, with it 60 of 83.
+    /// extremes, 0.213 and 0.338 through their crests. The noise is what the crests
+    /// average: on the first ten vessels without it 81 of the 83 rims levelled through
+    /// their extremes came within 0.3 degrees, with it 60 (through their crests 70).
     pub fn plane_tilts(&self, parameters: &AxisParameters, weights: Option<&[f64]>) -> Option<[f64; 2]> {
         let points = self.crest_points(&CandidateFrame::new(parameters));
         let top = match self.edge {
