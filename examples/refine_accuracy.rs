@@ -125,6 +125,7 @@ fn error_toward_sherd_deg(axis: &Axis, truth: &Axis, at: &Point) -> (f64, f64) {
 
 fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
     let truth = &sherd.truth;
+    let sherd_centre = centroid(&sherd.mesh);
     let started = Instant::now();
     let (axis, flagged, method_name) = if method == "pipeline" {
         match orient_automatic(&sherd.mesh, &OrientOptions::default()) {
@@ -144,9 +145,9 @@ fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
                                 mean_point_distance_mm(&sherd.mesh.positions, &r.axis, &truth.axis),
                                 r.report.flagged,
                                 truth.sector_angle_deg,
-                                offset_at(&orientation.axis, &truth.axis, &centroid(&sherd.mesh)),
+                                offset_at(&orientation.axis, &truth.axis, &sherd_centre),
                                 offset_at(&orientation.axis, &truth.axis, &truth.axis.point),
-                                truth.axis.height_of(&centroid(&sherd.mesh))
+                                truth.axis.height_of(&sherd_centre)
                             );
                         }
                         // As the record's status: the orientation's verdict and the
@@ -156,7 +157,7 @@ fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
                     Err(_) => (orientation.axis, true, "refine failed".into()),
                 }
             }
-            Err(_) => (perturbed(&truth.axis, &centroid(&sherd.mesh), seed), true, "orient failed".into()),
+            Err(_) => (perturbed(&truth.axis, &sherd_centre, seed), true, "orient failed".into()),
         }
     } else {
         let criterion = match method {
@@ -166,7 +167,7 @@ fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
             "tangent" => Criterion::Tangent,
             _ => Criterion::Auto,
         };
-        let start = perturbed(&truth.axis, &centroid(&sherd.mesh), seed);
+        let start = perturbed(&truth.axis, &sherd_centre, seed);
         match refine(&sherd.mesh, &start, &RefineOptions { criterion, ..Default::default() }) {
             Ok(r) => {
                 if std::env::var_os("REFINE_ACCURACY_DUMP").is_some() {
@@ -174,13 +175,14 @@ fn run(sherd: &SynthSherd, method: &str, seed: u64) -> Outcome {
                     let surface = sherd::refine::sections::PreparedSurface::new(&sherd.mesh, &start, sherd::refine::Surface::Both, None).unwrap();
                     let circles = sherd::refine::circles::CirclesObjective::new(&surface);
                     let at = |a: &Axis| circles.value(&surface.parameters_of(a)).sqrt();
+                    let (toward_deg, across_deg) = error_toward_sherd_deg(&r.axis, &truth.axis, &sherd_centre);
                     eprintln!(
                         "DUMP {seed} {:?} {:?} angle {:.2} dist {:.2} tilt {:.2} shift {:.2} res {:.4}/{:.4} circles start {:.4} result {:.4} truth {:.4} sector {:.0} error toward sherd {:.2} across {:.2}",
                         truth.part, r.report.method, r.axis.line_angle_to_deg(&truth.axis),
                         mean_point_distance_mm(&sherd.mesh.positions, &r.axis, &truth.axis), r.report.tilt_deg, r.report.shift_mm,
                         r.report.start_residual_mm, r.report.residual_mm, at(&start), at(&r.axis), at(&truth.axis), truth.sector_angle_deg,
-                        error_toward_sherd_deg(&r.axis, &truth.axis, &centroid(&sherd.mesh)).0,
-                        error_toward_sherd_deg(&r.axis, &truth.axis, &centroid(&sherd.mesh)).1
+                        toward_deg,
+                        across_deg
                     );
                 }
                 (r.axis, r.report.flagged, format!("{:?}", r.report.method))

@@ -228,10 +228,15 @@ impl LipBand {
 /// vessel's ovality and wobble move the crest in and out by tenths of a millimetre).
 fn lip_crests(bands: Vec<(Point, Vec<Point>)>, outward: f64) -> Vec<Option<Point>> {
     let lips: Vec<LipBand> = bands.iter().map(|(extreme, band)| LipBand::new(extreme, band, outward, CREST_BAND_MM)).collect();
+    fitted_crests(&lips, outward).unwrap_or_else(|| bands.into_iter().map(|(extreme, _)| Some(extreme)).collect())
+}
+
+/// [`lip_crests`] where the lips give crests: `None` where every section keeps its extreme.
+fn fitted_crests(lips: &[LipBand], outward: f64) -> Option<Vec<Option<Point>>> {
     // The curvature alone, each section's own line in u taken out of u^2 and of h
     // (Frisch-Waugh), summed over sections.
     let (mut cross, mut square) = (0.0, 0.0);
-    for lip in &lips {
+    for lip in lips {
         let (Some(q), Some(h)) = (lip.line_fit(|c| c[0] * c[0]), lip.line_fit(|c| c[1])) else { continue };
         for c in &lip.coordinates {
             let residual_q = c[0] * c[0] - (q[0] + q[1] * c[0]);
@@ -242,7 +247,7 @@ fn lip_crests(bands: Vec<(Point, Vec<Point>)>, outward: f64) -> Vec<Option<Point
     }
     let curvature = cross / square;
     if !(square > 0.0 && curvature < -CREST_MIN_CURVATURE_PER_MM) {
-        return bands.into_iter().map(|(extreme, _)| Some(extreme)).collect();
+        return None;
     }
     let crests: Vec<Option<Point>> = lips
         .iter()
@@ -258,10 +263,7 @@ fn lip_crests(bands: Vec<(Point, Vec<Point>)>, outward: f64) -> Vec<Option<Point
     // every section, since a crest and an extreme stand at different heights (the top of
     // the parabola against the highest vertex near it) and a plane through both would tip.
     let fitted = crests.iter().flatten().count();
-    if fitted < 3 || 2 * fitted < crests.len() {
-        return bands.into_iter().map(|(extreme, _)| Some(extreme)).collect();
-    }
-    crests
+    (fitted >= 3 && 2 * fitted >= crests.len()).then_some(crests)
 }
 
 /// Highest a crest may stand above its section's extreme vertex, mm: the vertex nearest
