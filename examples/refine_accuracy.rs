@@ -258,7 +258,7 @@ fn main() {
         env_number("REFINE_ACCURACY_CELL_MM", REFINEMENT_CORPUS_CELL_MM),
     );
     eprintln!("{} fragments from {vessels} vessels in {:.1} s", sherds.len(), generated.elapsed().as_secs_f64());
-    println!("| method | fragments | within 4 mm | within 4 mm (sector >= 10 deg) | median angle error (deg) | 90th pct angle (deg) | wrong (> 4 mm) not flagged | rim radius error median / 95th pct | diameter interval coverage | axis interval coverage (angle / distance) | median time (ms) |");
+    println!("| method | fragments | within 4 mm (fragments) | within 4 mm, sector >= 10 deg (fragments of) | median angle error (deg) | 90th pct angle (deg) | wrong (> 4 mm) not flagged | rim radius error median / 95th pct | diameter interval coverage | axis interval coverage (angle / distance) | median time (ms) |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|");
     for method in &methods {
         let outcomes: Vec<Outcome> = sherds.par_iter().map(|(seed, sherd)| run(sherd, method, *seed)).collect();
@@ -339,7 +339,7 @@ fn report(method: &str, outcomes: &[Outcome]) {
     }
     let times: Vec<f64> = outcomes.iter().map(|o| o.millis).collect();
     println!(
-        "| {method} | {total} | {:.1}% | {:.1}% ({}) | {:.3} | {:.3} | {:.1}% ({:.1}% flagged, {:.1}% by the axis interval only) | {} | {} | {} | {:.0} |",
+        "| {method} | {total} | {:.2}% ({within}) | {:.2}% ({wide_within} of {}) | {:.3} | {:.3} | {:.1}% ({:.1}% flagged, {:.1}% by the axis interval only) | {} | {} | {} | {:.0} |",
         percent(within, total),
         percent(wide_within, wide.len()),
         wide.len(),
