@@ -600,10 +600,10 @@ fn usable_section_count(circles: &circles::CirclesObjective, parameters: &AxisPa
 /// than [`MIN_PLACING_CURVATURE`]-fold for 330 of the 351 fragments [`Criterion::Auto`]
 /// refined by circles on the 20-vessel refinement corpus, right and wrong alike (a
 /// median of 0.5-fold: the valley of Eq. 2 along the meridian tilt and the radius is
-/// that flat). Along the placement's own move the test tells something: a search that wandered far
-/// along that valley is probed along it and rises little, one that stayed near the start
-/// is probed in whatever direction its small shift took. Of those 351 it flagged 101,
-/// 26 of the 34 that ended more than 4 mm off (BENCHMARKS.md, session 22).
+/// that flat). Along the placement's own move the test tells something: a search that
+/// wandered far along that valley is probed along it and rises little, one that stayed
+/// near the start is probed in whatever direction its small shift took. Of those 351 it
+/// flagged 101, 26 of the 34 that ended more than 4 mm off (BENCHMARKS.md, session 22).
 pub(crate) fn radial_curvature(circles: &circles::CirclesObjective, p: &AxisParameters) -> f64 {
     let at = circles.value(p);
     // The start axis is the start frame's z axis (the fragment's centroid lies on +x at
