@@ -432,7 +432,8 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
     };
     let refined = surface.axis_of(&parameters);
     let refined = orient_like(&refined, axis);
-    let centroid = surface.start_frame.inverse() * crate::mesh::Point::origin();
+    // The start frame's origin: the start axis's point level with the centroid.
+    let start_at_centroid_height = surface.start_frame.inverse() * crate::mesh::Point::origin();
     let report = RefineReport {
         method,
         reason: match flat_face {
@@ -454,7 +455,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
         start_residual_mm: start_cost.max(0.0).sqrt(),
         residual_mm: cost.max(0.0).sqrt(),
         tilt_deg: refined.line_angle_to_deg(axis),
-        shift_mm: (refined.closest_point(&centroid) - surface.start_axis.closest_point(&centroid)).norm(),
+        shift_mm: (refined.closest_point(&start_at_centroid_height) - start_at_centroid_height).norm(),
         kept_start,
         flagged: flag.is_some(),
         flag_reason: flag,
