@@ -753,15 +753,13 @@ mod tests {
         let frame = CandidateFrame::new(&[0.0; 4]);
         let extremes = objective.extreme_points(&frame).iter().map(|p| ([p.x, p.y, p.z], 1.0)).collect::<Vec<_>>();
         let plane = least_squares_plane(extremes).unwrap();
-        let extremes_tilt_deg = surface.axis_of(&{
-            let [x, y] = tilts_of_plane(plane[1], plane[2]);
-            [x, y, 0.0, 0.0]
-        });
-        assert!(extremes_tilt_deg.line_angle_to_deg(&vertical) > 0.5, "{}", extremes_tilt_deg.line_angle_to_deg(&vertical));
+        let [tilt_x, tilt_y] = tilts_of_plane(plane[1], plane[2]);
+        let through_extremes_deg = surface.axis_of(&[tilt_x, tilt_y, 0.0, 0.0]).line_angle_to_deg(&vertical);
+        assert!(through_extremes_deg > 0.5, "{through_extremes_deg}");
         // ...the plane through the crests is level.
         let levelled = level_by_plane(&surface, Edge::Rim, 3.0, sections, &Minimum { parameters: [0.0; 4], value: 0.0, iterations: 0 }).unwrap();
         let angle = surface.axis_of(&levelled.parameters).line_angle_to_deg(&vertical);
-        assert!(angle < 0.05, "{angle} {}", extremes_tilt_deg.line_angle_to_deg(&vertical));
+        assert!(angle < 0.05, "{angle} through the crests, {through_extremes_deg} through the extremes");
     }
 
     #[test]
