@@ -641,7 +641,7 @@ fn an_averaged_direction_eq2_cannot_place_turns_about_the_circles_axis() {
     // vessels from these starts: placed by Eq. 2 everywhere, auto had 179 within 4 mm
     // against the circles' 181; turned about the circles' axis there, 187.
     let corpus = sherd::refine::accuracy::refinement_corpus(12, 1.0, 0.02, 0.8);
-    let (mut circles_within, mut auto_within, mut compared) = (0, 0, 0);
+    let (mut circles_within, mut auto_within, mut compared, mut turned) = (0, 0, 0, 0);
     for (id, sherd) in &corpus {
         let centroid = sherd.mesh.centroid().unwrap();
         let azimuth = (*id as f64 * 2.4).rem_euclid(std::f64::consts::TAU);
@@ -653,10 +653,13 @@ fn an_averaged_direction_eq2_cannot_place_turns_about_the_circles_axis() {
         let Ok(circles) = refine(&sherd.mesh, &start, &RefineOptions { criterion: Criterion::Circles, ..Default::default() }) else { continue };
         let within = |axis: &Axis| usize::from(mean_point_distance_mm(&sherd.mesh.positions, axis, &sherd.truth.axis) <= 4.0);
         compared += 1;
+        // The report says which was done.
+        turned += usize::from(auto.report.reason.contains("turned about the circles' axis"));
         circles_within += within(&circles.axis);
         auto_within += within(&auto.axis);
     }
-    println!("{compared} fragments without a level edge: within 4 mm by circles {circles_within}, by auto {auto_within}");
+    println!("{compared} fragments without a level edge, {turned} turned: within 4 mm by circles {circles_within}, by auto {auto_within}");
     assert!(compared >= 150, "{compared} fragments");
+    assert!(turned >= 5, "{turned} fragments turned about the circles' axis");
     assert!(auto_within >= circles_within + 3, "within 4 mm: auto {auto_within}, circles {circles_within}");
 }

@@ -301,7 +301,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                             averaged.between_deg,
                             match averaged.placed_by_circles {
                                 true => "placed by Eq. 2",
-                                false => "turned about the circles' axis at the fragment's centroid height (Eq. 2 barely holds the averaged axis's position)",
+                                false => "turned about the circles' axis at the fragment's centroid height (Eq. 2 holds the averaged axis's position less than half as firmly as the circles' own)",
                             }
                         ));
                     }
