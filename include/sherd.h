@@ -691,9 +691,11 @@ typedef struct {
    */
   double axis_distance_interval_mm[2];
   /**
-   * 1 when the angle interval reaches past 4 degrees or the distance interval past
-   * 5 mm: the axis is uncertain, and it and these figures want a look before they are
-   * used (the JSON's notes say how far); 0 otherwise.
+   * 1 when the angle interval reaches past 4 degrees, the distance interval past
+   * 5 mm, or the axis refined without a quarter of the preserved arc moves by more
+   * than 1.5 mm of mean point distance: the axis is uncertain, and it and these
+   * figures want a look before they are used (the JSON's notes say how far); 0
+   * otherwise.
    */
   uint32_t axis_uncertain;
 } SherdMeasurements;

@@ -56,7 +56,8 @@ fn an_axis_the_bootstrap_doubts_is_not_called_ok() {
     assert!(uncertain >= 3, "{uncertain} axes uncertain");
     // Before the doubts reached the record, four axes 4.4-16.6 mm off were among this
     // vessel's ok rows; now those it calls ok are all within 4 mm (fragment 3, above, was
-    // the third).
-    assert!(ok_offsets_mm.len() >= 2, "ok rows' offsets {ok_offsets_mm:?} mm");
+    // the third). Of the two right ones left, the sector jackknife (an axis that moves
+    // more than 1.5 mm refined without a quarter of its arc) now doubts one.
+    assert!(!ok_offsets_mm.is_empty(), "ok rows' offsets {ok_offsets_mm:?} mm");
     assert!(ok_offsets_mm.iter().all(|&off| off < 4.0), "ok rows' offsets {ok_offsets_mm:?} mm");
 }

@@ -98,6 +98,14 @@ fn placed(mesh: &Mesh, seed: u64, tilt_deg: f64, shift_mm: f64) -> (Mesh, Axis, 
     (moved, truth, start)
 }
 
+/// A fixed start for corpus fragment `id`: its true axis turned 3 degrees about its point
+/// level with the centroid and shifted 2 mm, in directions set by the id.
+fn corpus_start(id: u64, sherd: &sherd::synth::SynthSherd) -> Axis {
+    let centroid = sherd.mesh.centroid().unwrap();
+    let azimuth = (id as f64 * 2.4).rem_euclid(std::f64::consts::TAU);
+    sherd::refine::accuracy::perturbed_axis(&sherd.truth.axis.normalized(&centroid), azimuth, 3.0, azimuth + 1.0, 2.0)
+}
+
 #[test]
 fn every_criterion_recovers_the_axis_of_a_perfect_rim_sherd() {
     let mesh = fixture(40.0, 45.0, true, 0.0);
@@ -578,9 +586,7 @@ fn body_sherds_take_the_mean_of_the_circles_and_the_profile() {
     let corpus = sherd::refine::accuracy::refinement_corpus(6, 1.0, 0.02, 0.8);
     let (mut circles_angles, mut auto_angles) = (Vec::new(), Vec::new());
     for (id, sherd) in corpus.iter().filter(|(_, s)| s.truth.part == SherdPart::Body) {
-        let centroid = sherd.mesh.centroid().unwrap();
-        let azimuth = (*id as f64 * 2.4).rem_euclid(std::f64::consts::TAU);
-        let start = sherd::refine::accuracy::perturbed_axis(&sherd.truth.axis.normalized(&centroid), azimuth, 3.0, azimuth + 1.0, 2.0);
+        let start = corpus_start(*id, sherd);
         let angle = |criterion| {
             refine(&sherd.mesh, &start, &RefineOptions { criterion, ..Default::default() }).map(|r| r.axis.line_angle_to_deg(&sherd.truth.axis))
         };
@@ -617,9 +623,7 @@ fn a_clean_scan_is_flagged_where_its_axis_slides_as_a_noisy_one_is() {
     let corpus = sherd::refine::accuracy::refinement_corpus(8, 1.0, 0.0, 0.8);
     let (mut wrong, mut wrong_unflagged, mut flagged, mut refined) = (0, 0, 0, 0);
     for (id, sherd) in &corpus {
-        let centroid = sherd.mesh.centroid().unwrap();
-        let azimuth = (*id as f64 * 2.4).rem_euclid(std::f64::consts::TAU);
-        let start = sherd::refine::accuracy::perturbed_axis(&sherd.truth.axis.normalized(&centroid), azimuth, 3.0, azimuth + 1.0, 2.0);
+        let start = corpus_start(*id, sherd);
         let Ok(refinement) = refine(&sherd.mesh, &start, &RefineOptions::default()) else { continue };
         refined += 1;
         flagged += usize::from(refinement.report.flagged);
@@ -643,9 +647,7 @@ fn an_averaged_direction_eq2_cannot_place_turns_about_the_circles_axis() {
     let corpus = sherd::refine::accuracy::refinement_corpus(12, 1.0, 0.02, 0.8);
     let (mut circles_within, mut auto_within, mut compared, mut turned) = (0, 0, 0, 0);
     for (id, sherd) in &corpus {
-        let centroid = sherd.mesh.centroid().unwrap();
-        let azimuth = (*id as f64 * 2.4).rem_euclid(std::f64::consts::TAU);
-        let start = sherd::refine::accuracy::perturbed_axis(&sherd.truth.axis.normalized(&centroid), azimuth, 3.0, azimuth + 1.0, 2.0);
+        let start = corpus_start(*id, sherd);
         let Ok(auto) = refine(&sherd.mesh, &start, &RefineOptions::default()) else { continue };
         if auto.report.method != Criterion::Circles {
             continue;
@@ -662,4 +664,35 @@ fn an_averaged_direction_eq2_cannot_place_turns_about_the_circles_axis() {
     assert!(compared >= 150, "{compared} fragments");
     assert!(turned >= 5, "{turned} fragments turned about the circles' axis");
     assert!(auto_within >= circles_within + 3, "within 4 mm: auto {auto_within}, circles {circles_within}");
+}
+
+#[test]
+fn a_clean_scans_wrong_axis_moves_when_a_quarter_of_its_arc_is_left_out() {
+    use sherd::profile::measure::MAX_UNFLAGGED_SECTOR_MOVE_MM;
+    use sherd::refine::sector_jackknife::sector_jackknife;
+    // Without scan noise the bootstrap's resampled sections agree about an axis the
+    // vessel's deformation put off; the arc without one of its quarters reads another
+    // deformation.
+    let corpus = sherd::refine::accuracy::refinement_corpus(5, 1.0, 0.0, 0.8);
+    let (mut wrong, mut wrong_moved, mut right, mut right_moved) = (0, 0, 0, 0);
+    for (id, sherd) in &corpus {
+        let start = corpus_start(*id, sherd);
+        let Ok(refinement) = refine(&sherd.mesh, &start, &RefineOptions::default()) else { continue };
+        if refinement.report.flagged {
+            continue;
+        }
+        let Some(jackknife) = sector_jackknife(&sherd.mesh, &refinement.axis, &RefineOptions::default()) else { continue };
+        let moved = usize::from(jackknife.largest_move_mm > MAX_UNFLAGGED_SECTOR_MOVE_MM);
+        if mean_point_distance_mm(&sherd.mesh.positions, &refinement.axis, &sherd.truth.axis) > 4.0 {
+            wrong += 1;
+            wrong_moved += moved;
+        } else {
+            right += 1;
+            right_moved += moved;
+        }
+    }
+    println!("not flagged by the refinement: {wrong_moved} of {wrong} past 4 mm and {right_moved} of {right} within it moved more than {MAX_UNFLAGGED_SECTOR_MOVE_MM} mm");
+    assert!(right >= 80 && wrong >= 3, "{right} right, {wrong} wrong");
+    assert!(2 * wrong_moved >= wrong, "{wrong_moved} of {wrong} wrong axes moved");
+    assert!(5 * right_moved <= right, "{right_moved} of {right} right axes moved");
 }

@@ -49,9 +49,11 @@ pub struct SherdMeasurements {
     /// given axis, mm. A caller whose `size` ends before this field (an older header) is
     /// not written to here, nor in the fields after it.
     pub axis_distance_interval_mm: [f64; 2],
-    /// 1 when the angle interval reaches past 4 degrees or the distance interval past
-    /// 5 mm: the axis is uncertain, and it and these figures want a look before they are
-    /// used (the JSON's notes say how far); 0 otherwise.
+    /// 1 when the angle interval reaches past 4 degrees, the distance interval past
+    /// 5 mm, or the axis refined without a quarter of the preserved arc moves by more
+    /// than 1.5 mm of mean point distance: the axis is uncertain, and it and these
+    /// figures want a look before they are used (the JSON's notes say how far); 0
+    /// otherwise.
     pub axis_uncertain: u32,
 }
 

@@ -7,7 +7,8 @@
 //! * [`tangent`]: tangent plane to rim or base (Eq. 7);
 //!
 //! with Chernov's circle fits ([`circle_fit`]), the sections they share ([`sections`])
-//! and bootstrap intervals ([`uncertainty`]). [`refine`] runs one criterion, or picks one
+//! bootstrap intervals ([`uncertainty`]) and a jackknife over sectors of the arc
+//! ([`sector_jackknife`]). [`refine`] runs one criterion, or picks one
 //! ([`Criterion::Auto`], which on a fragment with no level rim or base averages the
 //! circles' and the profile's directions), and never returns an axis its own criterion
 //! rates worse than the start.
@@ -22,6 +23,7 @@ pub mod objective;
 pub mod pareto;
 pub mod profile;
 pub mod sections;
+pub mod sector_jackknife;
 pub mod tangent;
 pub mod uncertainty;
 

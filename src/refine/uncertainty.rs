@@ -41,7 +41,8 @@ use crate::Result;
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default)]
 pub struct BootstrapOptions {
-    /// Number of resamples; 0 disables the intervals.
+    /// Number of resamples; 0 disables the intervals and the axis tests that go with them
+    /// (`Measurements::axis_uncertain`).
     pub samples: usize,
     /// Seed of the resampling (the same seed gives the same intervals).
     pub seed: u64,

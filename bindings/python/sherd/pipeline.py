@@ -248,7 +248,8 @@ class Measurements:
     axis_angle_interval_deg: tuple
     details: dict
     axis_uncertain: bool = False
-    """The axis angle interval reaches past 4 degrees or the distance interval past 5 mm:
+    """The axis angle interval reaches past 4 degrees, the distance interval past 5 mm, or
+    the axis refined without a quarter of the preserved arc moves by more than 1.5 mm:
     the axis and these figures want a look before they are used (``details["notes"]``
     says how far)."""
     axis_distance_interval_mm: tuple = (float("nan"), float("nan"))
