@@ -6,7 +6,7 @@
 //! * [`profile`]: vertical profile superposition (Eq. 5-6);
 //! * [`tangent`]: tangent plane to rim or base (Eq. 7);
 //!
-//! with Chernov's circle fits ([`circle_fit`]), the sections they share ([`sections`])
+//! with Chernov's circle fits ([`circle_fit`]), the sections they share ([`sections`]),
 //! bootstrap intervals ([`uncertainty`]) and a jackknife over sectors of the arc
 //! ([`sector_jackknife`]). [`refine`] runs one criterion, or picks one
 //! ([`Criterion::Auto`], which on a fragment with no level rim or base averages the
