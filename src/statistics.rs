@@ -1,6 +1,7 @@
-//! The statistics the layers share: quantiles, medians and weighted medians, and the
-//! principal axes of a point set. They live at the crate's root because the orientation
-//! and the refinement both need them and neither may depend on the other's code.
+//! The statistics the layers share: quantiles, medians and weighted medians, equal-count
+//! bins, and the principal axes of a point set. They live at the crate's root because the
+//! orientation and the refinement both need them and neither may depend on the other's
+//! code.
 
 use crate::mesh::{Point, Vector};
 
@@ -44,6 +45,19 @@ pub fn upper_median(values: &[f64]) -> f64 {
     let mut sorted = values.to_vec();
     sorted.sort_unstable_by(f64::total_cmp);
     sorted[sorted.len() / 2]
+}
+
+/// For each index of `members`, its bin `0..bins` by rank of `values` (equal counts);
+/// other indices get 0.
+pub fn equal_count_bins(values: &[f64], members: &[usize], bins: usize) -> Vec<usize> {
+    let mut order = members.to_vec();
+    order.sort_by(|a, b| values[*a].total_cmp(&values[*b]));
+    let mut bin = vec![0; values.len()];
+    let m = order.len().max(1);
+    for (rank, &i) in order.iter().enumerate() {
+        bin[i] = (rank * bins / m).min(bins - 1);
+    }
+    bin
 }
 
 /// The weighted `fraction` quantile of `(value, weight)` pairs: the least value whose

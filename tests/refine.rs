@@ -613,7 +613,6 @@ fn body_sherds_take_the_mean_of_the_circles_and_the_profile() {
 
 #[test]
 fn a_clean_scan_is_flagged_where_its_axis_slides_as_a_noisy_one_is() {
-    use sherd::orient::mean_point_distance_mm;
     // Without scan noise Eq. 2 at the placement is the deformation's residual alone, a
     // few thousandths of a millimetre, and a valley as flat as those the placement test
     // flags on a noisy scan rose many times over it. These 8 vessels from these starts:
@@ -669,7 +668,7 @@ fn an_averaged_direction_eq2_cannot_place_turns_about_the_circles_axis() {
 #[test]
 fn a_clean_scans_wrong_axis_moves_when_a_quarter_of_its_arc_is_left_out() {
     use sherd::profile::measure::MAX_UNFLAGGED_SECTOR_MOVE_MM;
-    use sherd::refine::sector_jackknife::sector_jackknife;
+    use sherd::refine::sector_jackknife::sector_jackknife_move_mm;
     // Without scan noise the bootstrap's resampled sections agree about an axis the
     // vessel's deformation put off; the arc without one of its quarters reads another
     // deformation.
@@ -681,8 +680,8 @@ fn a_clean_scans_wrong_axis_moves_when_a_quarter_of_its_arc_is_left_out() {
         if refinement.report.flagged {
             continue;
         }
-        let Some(jackknife) = sector_jackknife(&sherd.mesh, &refinement.axis, &RefineOptions::default()) else { continue };
-        let moved = usize::from(jackknife.largest_move_mm > MAX_UNFLAGGED_SECTOR_MOVE_MM);
+        let Some(moved_mm) = sector_jackknife_move_mm(&sherd.mesh, &refinement.axis, &RefineOptions::default()) else { continue };
+        let moved = usize::from(moved_mm > MAX_UNFLAGGED_SECTOR_MOVE_MM);
         if mean_point_distance_mm(&sherd.mesh.positions, &refinement.axis, &sherd.truth.axis) > 4.0 {
             wrong += 1;
             wrong_moved += moved;

@@ -135,6 +135,14 @@ impl Mesh {
         }))
     }
 
+    /// Keeps the vertices with `keep[v]` and the faces whose three corners are kept,
+    /// renumbering the faces and compacting the per-vertex attributes.
+    pub fn keep_vertices(&mut self, keep: &[bool]) {
+        let keep_face: Vec<bool> = self.triangles.iter().map(|t| t.iter().all(|&v| keep[v as usize])).collect();
+        repair::retain_faces(self, &keep_face);
+        repair::retain_vertices(self, keep);
+    }
+
     /// Centroid of the vertices.
     pub fn centroid(&self) -> Option<Point> {
         if self.positions.is_empty() {
@@ -239,5 +247,16 @@ mod tests {
         let (lo, hi) = mesh.bounding_box().unwrap();
         assert_eq!(lo, Point::origin());
         assert_eq!(hi, Point::new(1.0, 1.0, 1.0));
+    }
+
+    #[test]
+    fn keeping_vertices_drops_the_faces_of_the_others_and_keeps_the_normals_of_the_rest() {
+        let positions = vec![Point::new(0.0, 0.0, 0.0), Point::new(1.0, 0.0, 0.0), Point::new(0.0, 1.0, 0.0), Point::new(1.0, 1.0, 0.0)];
+        let normals = (0..4).map(|i| Vector::new(0.0, i as f64, 1.0).normalize()).collect();
+        let mut mesh = Mesh { normals: Some(normals), ..Mesh::new(positions, vec![[0, 1, 2], [1, 3, 2]]) };
+        mesh.keep_vertices(&[false, true, true, true]);
+        assert_eq!(mesh.positions, vec![Point::new(1.0, 0.0, 0.0), Point::new(0.0, 1.0, 0.0), Point::new(1.0, 1.0, 0.0)]);
+        assert_eq!(mesh.triangles, vec![[0, 2, 1]]);
+        assert_eq!(mesh.normals.unwrap()[2], Vector::new(0.0, 3.0, 1.0).normalize());
     }
 }

@@ -245,7 +245,7 @@ fn mark_duplicate_faces(triangles: &[[u32; 3]], keep: &mut [bool]) -> usize {
 }
 
 /// Keeps the faces with `keep[f]`, and their corner texture coordinates.
-fn retain_faces(mesh: &mut Mesh, keep: &[bool]) {
+pub(super) fn retain_faces(mesh: &mut Mesh, keep: &[bool]) {
     if keep.iter().all(|&k| k) {
         return;
     }
@@ -263,8 +263,9 @@ fn retain_faces(mesh: &mut Mesh, keep: &[bool]) {
     }
 }
 
-/// Keeps the vertices with `keep[v]`, renumbering faces and compacting attributes.
-fn retain_vertices(mesh: &mut Mesh, keep: &[bool]) {
+/// Keeps the vertices with `keep[v]`, renumbering faces and compacting attributes; the
+/// faces must use kept vertices only.
+pub(super) fn retain_vertices(mesh: &mut Mesh, keep: &[bool]) {
     if keep.iter().all(|&k| k) {
         return;
     }

@@ -20,7 +20,7 @@ use rayon::prelude::*;
 use super::halir::{HalirFit, HalirOptions, refined_direction};
 use super::line_complex::CenteredLines;
 use crate::mesh::Vector;
-use crate::statistics::upper_median;
+use crate::statistics::{equal_count_bins, upper_median};
 
 /// Number of regions the sherd is cut into: enough that one region is a local part of the
 /// sherd (a sixth of it), few enough that each region left out still leaves most of the
@@ -131,19 +131,6 @@ fn spread(values: &[f64]) -> f64 {
             (l.min(*v), h.max(*v))
         });
     high - low
-}
-
-/// For each index of `members`, its bin `0..bins` by rank of `values` (equal counts);
-/// other indices get 0.
-fn equal_count_bins(values: &[f64], members: &[usize], bins: usize) -> Vec<usize> {
-    let mut order = members.to_vec();
-    order.sort_by(|a, b| values[*a].total_cmp(&values[*b]));
-    let mut bin = vec![0; values.len()];
-    let m = order.len().max(1);
-    for (rank, &i) in order.iter().enumerate() {
-        bin[i] = (rank * bins / m).min(bins - 1);
-    }
-    bin
 }
 
 /// The fit made again with each of [`REGION_COUNT`] regions left out (its lines weighted

@@ -18,7 +18,7 @@ use crate::orient::Axis;
 use crate::refine::sections::{sector_angle_rad, vertical_sections, PreparedSurface, Skin, Surface};
 use crate::statistics::quantile;
 use crate::refine::tangent::Edge;
-use crate::refine::sector_jackknife::sector_jackknife;
+use crate::refine::sector_jackknife::sector_jackknife_move_mm;
 use crate::refine::uncertainty::{angle_interval_deg, bootstrap_axes, distance_interval_mm, value_interval, BootstrapOptions};
 use crate::refine::{detect_edges_over, RefineOptions, EDGE_LEVEL_FRACTION};
 
@@ -122,7 +122,7 @@ pub const MAX_UNFLAGGED_AXIS_INTERVAL_DEG: f64 = 4.0;
 pub const MAX_UNFLAGGED_AXIS_DISTANCE_MM: f64 = 5.0;
 
 /// An axis that moves further than this when the fragment is refined again without one
-/// quarter of its arc ([`sector_jackknife`]) is reported uncertain, mm of mean point
+/// quarter of its arc ([`sector_jackknife_move_mm`]) is reported uncertain, mm of mean point
 /// distance. The bootstrap resamples sections that each span the whole arc, and on a
 /// clean scan they agree about an axis the vessel's deformation put off; leaving out part
 /// of the arc changes what the deformation says. On the synthetic corpus without scan
@@ -360,8 +360,8 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
                     "the axis's 95% position interval reaches {upper:.1} mm of mean point distance (more than {MAX_UNFLAGGED_AXIS_DISTANCE_MM})"
                 ));
             }
-            let jackknife = sector_jackknife(bootstrap_mesh, axis, &options.refine);
-            if let Some(moved_mm) = jackknife.map(|j| j.largest_move_mm).filter(|moved| *moved > MAX_UNFLAGGED_SECTOR_MOVE_MM) {
+            let sector_move_mm = sector_jackknife_move_mm(bootstrap_mesh, axis, &options.refine);
+            if let Some(moved_mm) = sector_move_mm.filter(|moved| *moved > MAX_UNFLAGGED_SECTOR_MOVE_MM) {
                 measurements.axis_doubts.push(format!(
                     "refined without a quarter of the preserved arc, the axis moves by {moved_mm:.1} mm of mean point distance (more than {MAX_UNFLAGGED_SECTOR_MOVE_MM})"
                 ));

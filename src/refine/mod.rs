@@ -535,9 +535,11 @@ fn averaged_with_profile(
     let (placed, placing_iterations) = search_shifts(circles, turned, settings)?;
     let holds = radial_curvature(circles, &placed) >= MIN_AVERAGED_PLACING_HOLD * radial_curvature(circles, &by_circles);
     // Turned only where that is no worse than the start by Eq. 2, as every result is.
-    let placed_by_circles = holds || circles.value(&turned) > start_cost;
-    let parameters = if placed_by_circles { placed } else { turned };
-    let cost = circles.value(&parameters);
+    let turned_cost = (!holds).then(|| circles.value(&turned)).filter(|cost| *cost <= start_cost);
+    let (parameters, cost, placed_by_circles) = match turned_cost {
+        Some(cost) => (turned, cost, false),
+        None => (placed, circles.value(&placed), true),
+    };
     (cost <= start_cost).then_some(Averaged {
         parameters,
         cost,
