@@ -106,14 +106,14 @@ impl Analysis {
     }
 
     /// Why the final axis wants a look before its figures are used, although the
-    /// orientation found it: the measurements' doubts (the bootstrap's 95% intervals of its
-    /// direction or position reach what makes an axis wrong; see
-    /// [`Measurements::axis_doubts`]). Empty when they have none. Not the refinement's own
-    /// flag (Eq. 2 barely rises along the radius): calibrated on coarse fragments, it
-    /// flagged good axes of dense scans and missed wrong ones (see
-    /// [`crate::profile::measure::MAX_UNFLAGGED_AXIS_DISTANCE_MM`]).
-    pub fn axis_doubts(&self) -> &[String] {
-        self.measurements.as_ref().map_or(&[], |m| &m.axis_doubts)
+    /// orientation found it: the orientation's own doubts (another axis fits the piece
+    /// about as well, [`Orientation::doubts`]) and the measurements' (the bootstrap's 95%
+    /// intervals of its direction or position reach what makes an axis wrong, or it moves
+    /// when a quarter of the arc is left out; see [`Measurements::axis_doubts`]). Empty
+    /// when there are none.
+    pub fn axis_doubts(&self) -> Vec<String> {
+        let measured = self.measurements.as_ref().map_or(&[][..], |m| &m.axis_doubts[..]);
+        self.orientation.doubts.iter().chain(measured).cloned().collect()
     }
 }
 
@@ -139,7 +139,7 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
         || (options.refine.is_some() && !options.refine_on_full_resolution)
         || (!options.bootstrap_on_full_resolution && options.measure.bootstrap.samples > 0);
     let decimated = if wants_copy { decimated_copy(&mesh, &options.orient)? } else { None };
-    let orientation = match options.manual_points {
+    let mut orientation = match options.manual_points {
         Some(points) => {
             let points = points.map(|p| Point::from(p.coords * scale));
             orient_from_three_points(&mesh, points, &options.manual)?
@@ -176,6 +176,12 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
         }
         _ => None,
     };
+    // The sense cues read the ends, floor and slope of the profile, which the refined
+    // axis shows more sharply than the pre-orientation's.
+    let refinement = refinement.map(|mut refinement| {
+        refinement.axis = orientation.rejudge_sense(&refinement.axis);
+        refinement
+    });
     timings.refine_s = clock.elapsed().as_secs_f64();
 
     let mut measurements = None;

@@ -325,8 +325,11 @@ fn hard_presets_are_flagged() {
         for seed in 0..8 {
             let sherd = synthetic_sherd(seed, &SherdOptions::hard_case(case));
             let orientation = orient_automatic(&sherd.mesh, &OrientOptions::default()).unwrap();
+            // Declined, its sense left open, its axis doubted, or right (a tiny piece that
+            // keeps enough of its curvature): never confidently wrong.
+            let right = orientation.axis.angle_to_deg(&sherd.truth.axis) < 5.0;
             assert!(
-                !orientation.verdict.is_oriented(),
+                !orientation.verdict.is_oriented() || !orientation.doubts.is_empty() || right,
                 "{case:?} seed {seed} oriented, {:.1} deg off: {:?}",
                 orientation.axis.line_angle_to_deg(&sherd.truth.axis),
                 orientation.report
@@ -357,69 +360,63 @@ fn synthetic_skins_match_the_generator() {
 }
 
 /// The SfS++ pot C sherds (`../shared/data/sfspp_pot_C`: 200-256 points with normals each,
-/// both skins): each one is oriented within 5 degrees of its reference axis (known to about
-/// 3 degrees) or flagged, never confidently wrong. Piece 4 is a shoulder whose 200 points
-/// an axis through the sherd explains best (19.6 degrees from the reference); it is flagged
-/// because a vessel's surface cannot meet its axis curved like a knob.
+/// both skins), through the whole pipeline: each one is `ok` only within 5 degrees of its
+/// reference axis (known to about 3 degrees); otherwise declined or doubted, never
+/// confidently wrong. The base (piece 3) keeps its axis within 3 degrees.
 #[test]
 fn the_sfspp_sherds_are_oriented_near_their_reference_or_flagged() {
+    use sherd::pipeline::{analyse, PipelineOptions, SherdRecord, STATUS_OK};
     let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/sfspp_pot_C");
     if !folder.exists() {
         println!("SKIP: {} is absent", folder.display());
         return;
     }
     let pieces = sherd::orient::accuracy::read_sfspp_pot_c(&folder).unwrap();
-    let mut oriented = 0;
+    let options = PipelineOptions { refine: Some(Default::default()), ..Default::default() };
     for (piece, sherd::orient::accuracy::SfsppPiece { cloud, reference, .. }) in (1..).zip(pieces) {
-        let orientation = orient_automatic(&cloud, &OrientOptions::default()).unwrap();
-        let angle = orientation.axis.line_angle_to_deg(&reference);
-        println!("piece {piece}: {angle:.2} deg from the reference, {:?}", orientation.verdict);
-        if orientation.verdict.has_axis_line() {
-            oriented += 1;
-            assert!(angle < 5.0, "piece {piece} oriented {angle:.1} deg from its reference and not flagged");
+        let analysis = analyse(cloud, &options).unwrap();
+        let record = SherdRecord::from_analysis(format!("piece {piece}"), &analysis);
+        let angle = analysis.axis().line_angle_to_deg(&reference);
+        println!("piece {piece}: {angle:.2} deg from the reference, {} {:?}", record.status, record.reason);
+        if record.status == STATUS_OK {
+            assert!(angle < 5.0, "piece {piece} called ok {angle:.1} deg from its reference");
         }
-        // The flags are judgement, not blindness: the body piece and the base (pieces 1
-        // and 3) are flagged with axes within 3 degrees of the reference, and piece 4 for
-        // the knob its axis would cross.
-        if piece == 1 || piece == 3 {
-            assert!(angle < 3.0, "piece {piece}: {angle:.2} deg from the reference");
-        }
-        if piece == 4 {
-            let reason = orientation.verdict.reason().unwrap_or_default();
-            assert!(reason.contains("curved like a knob"), "piece 4: {reason}");
+        if piece == 3 {
+            assert!(analysis.orientation.verdict.has_axis_line() && angle < 3.0, "piece 3: {angle:.2} deg from the reference");
         }
     }
-    println!("{oriented} of 4 pieces oriented");
 }
 
-/// The axis line the tool gives as usable (oriented, or only its sense in doubt) is never
-/// grossly wrong on the 34-fragment breakage of `examples/refine_accuracy.rs`: vessel 1's
-/// fragment 10 and vessel 6's fragment 21 (the belly of a jar, nearly a surface of
-/// revolution about the horizontal line through its profile's centre too) had lines 90
-/// degrees off with only the sense in doubt, and vessel 7's fragments 0 and 18 (small rim
-/// pieces, 136 and 174 vertices) were oriented 73 degrees off, about an axis through their
-/// lip that their normals missed by 2.8-3.6 degrees.
+/// The axes the pipeline calls `ok` are never grossly wrong on the 34-fragment breakage
+/// of `examples/refine_accuracy.rs` in 2 mm cells: the belly of a jar (nearly a surface of
+/// revolution about the horizontal line through its profile's centre too) and small rim
+/// pieces of 136-174 vertices, whose landscape has several valleys, are declined or
+/// doubted. Most fragments still get an axis line.
 #[test]
-fn no_usable_axis_line_is_grossly_wrong_on_the_refinement_corpus() {
+fn no_ok_axis_is_grossly_wrong_on_the_refinement_corpus() {
+    use sherd::pipeline::{analyse, PipelineOptions, SherdRecord, STATUS_OK};
     use sherd::synth::{generate_vessel, VesselOptions};
     let options = VesselOptions { fragment_count: 34, random_motion: true, ..Default::default() };
-    let mut usable = 0;
+    let pipeline = PipelineOptions { refine: Some(Default::default()), ..Default::default() };
+    let (mut usable, mut ok) = (0, 0);
     let mut wrong = Vec::new();
     for seed in [1u64, 6, 7] {
         let vessel = generate_vessel(seed, &options);
         for (k, sherd) in vessel.fragments.iter().enumerate().filter(|(_, s)| s.truth.hard_case.is_none()) {
-            let Ok(orientation) = orient_automatic(&sherd.mesh, &OrientOptions::default()) else { continue };
-            if orientation.verdict.has_axis_line() {
-                usable += 1;
-                let angle = orientation.axis.line_angle_to_deg(&sherd.truth.axis);
-                if angle > 15.0 {
-                    wrong.push(format!("vessel {seed} fragment {k}: {angle:.1} deg, {:?}", orientation.verdict));
+            let Ok(analysis) = analyse(sherd.mesh.clone(), &pipeline) else { continue };
+            let record = SherdRecord::from_analysis(format!("vessel {seed} fragment {k}"), &analysis);
+            usable += analysis.orientation.verdict.has_axis_line() as usize;
+            if record.status == STATUS_OK {
+                ok += 1;
+                let angle = analysis.axis().line_angle_to_deg(&sherd.truth.axis);
+                if angle > 15.0 || analysis.axis().direction.dot(&sherd.truth.axis.direction) < 0.0 {
+                    wrong.push(format!("{}: {angle:.1} deg", record.file));
                 }
             }
         }
     }
-    assert!(usable >= 40, "only {usable} usable axis lines of 3 vessels");
-    assert!(wrong.is_empty(), "usable axis lines more than 15 deg off: {wrong:#?}");
+    assert!(usable >= 50 && ok >= 10, "{usable} axis lines and {ok} ok of 3 vessels");
+    assert!(wrong.is_empty(), "ok axes more than 15 deg off or upside down: {wrong:#?}");
 }
 
 /// A base's foot is a level circle about the axis, like a rim. Two base pieces whose wall

@@ -48,9 +48,10 @@ fn an_axis_the_bootstrap_doubts_is_not_called_ok() {
             // The refinement placed this base's axis where the skins barely fix it, 16.6 mm
             // off the truth; the resampled sections slide it along the radius, and the
             // record called it ok before.
+            // Now the whole-sphere search finds another axis about as good, and its sense is
+            // not known either: never called ok.
             assert!(off_mm > 4.0, "{context}");
-            assert_eq!(record.status, STATUS_AXIS_UNCERTAIN, "{context}");
-            assert!(record.reason.as_deref().is_some_and(|r| r.contains("95% position interval")), "{context}");
+            assert_ne!(record.status, STATUS_OK, "{context}");
         }
     }
     assert!(uncertain >= 3, "{uncertain} axes uncertain");

@@ -53,7 +53,7 @@ fn pre_orientation_and_bootstrap_use_the_copy_and_measurements_the_full_mesh() {
 
 /// The circles criterion refines on the 20k-face copy; the tangent plane levels the rim
 /// on the full mesh and places it by circles on the copy, within a few hundredths of a
-/// millimetre of where the full mesh places it.
+/// millimetre of where the full mesh places it from the same start.
 fn assert_refined_on_the_mesh_its_criterion_wants(analysis: &sherd::pipeline::Analysis) -> Criterion {
     let refinement = analysis.refinement.as_ref().expect("refined");
     let method = refinement.report.method;
@@ -68,11 +68,10 @@ fn assert_refined_on_the_mesh_its_criterion_wants(analysis: &sherd::pipeline::An
         let turned_deg = on_full_mesh.line_angle_to_deg(&refinement.axis);
         assert!(turned_deg < 1e-9, "levelled on the full mesh: {turned_deg} deg apart");
         let centroid = analysis.mesh.centroid().expect("a centroid");
-        let apart_mm = (on_full_mesh.closest_point(&centroid) - refinement.axis.closest_point(&centroid)).norm();
-        assert!(apart_mm < 0.05, "placed {apart_mm} mm from the full mesh's placement");
-        // The pre-orientation of these rims is placed within a few tenths of a millimetre
-        // already, where the placement barely moves it: from a start 3 mm away the copy
-        // must place the axis where the full mesh does too.
+        // Where the placements are compared: from a start 3 mm off, where both must move
+        // the axis. From a start a millimetre off, the Nelder-Mead search of the shifts
+        // may stop in the shallow radial valley of a short rim at different points on the
+        // two meshes.
         let shifted = sherd::refine::accuracy::perturbed_axis(start, 0.0, 0.0, 0.0, 3.0);
         let on_copy = refine_placing_on(&analysis.mesh, &copy, &shifted, &RefineOptions::default()).unwrap().axis;
         let on_full_mesh = refine(&analysis.mesh, &shifted, &RefineOptions::default()).unwrap().axis;

@@ -56,6 +56,13 @@ pub struct SenseCues {
     pub upper_level_fraction: f64,
     /// The same for the lower end.
     pub lower_level_fraction: f64,
+    /// Share of the points at the upper end that lie on the surface of revolution (a
+    /// lip's do, a break's do not); NaN when not measured.
+    #[serde(default)]
+    pub upper_finished_share: f64,
+    /// The same for the lower end.
+    #[serde(default)]
+    pub lower_finished_share: f64,
     /// Opening cue, -[`OPENING_MAX_CONFIDENCE`] to [`OPENING_MAX_CONFIDENCE`].
     pub opening: f64,
     /// Area-weighted mean slope `dr/dz` of the wall.
@@ -81,6 +88,9 @@ const LEVEL_SPREAD_MM: f64 = 0.5;
 /// Smallest fraction of the sections whose end lies on the level edge: a rim preserved
 /// along under 40% of the piece's arc is not trusted (a stretch of break can be as level).
 const MIN_LEVEL_FRACTION: f64 = 0.4;
+/// Least share of the points at a level end that lie on the surface of revolution for the
+/// end to be a finished edge (a lip or a foot) rather than a break.
+const MIN_FINISHED_SHARE: f64 = 0.5;
 /// Smallest ratio of the spreads of the two ends for the level-edge cue to speak.
 const LEVEL_MIN_RATIO: f64 = 3.0;
 /// Ratio of the spreads at which the level-edge cue is certain (log-linear from
@@ -135,6 +145,12 @@ pub struct ProfileEnds {
     pub upper_level_fraction: f64,
     /// The same for the lower end.
     pub lower_level_fraction: f64,
+    /// Share of the points near the upper end (within a few spacings of each section's
+    /// end) that lie on the surface of revolution: high at a lip, low at a break; NaN when
+    /// not measured.
+    pub upper_finished_share: f64,
+    /// The same for the lower end.
+    pub lower_finished_share: f64,
     /// Median `(radius, height)` of the upper end, mm.
     pub upper: [f64; 2],
     /// Median `(radius, height)` of the lower end, mm.
@@ -152,6 +168,12 @@ pub struct ProfileEnds {
 /// extreme projections of each section are its ends. `None` with too few points or
 /// sections to judge.
 pub fn profile_ends(points: &[Point], axis: &Axis) -> Option<ProfileEnds> {
+    profile_ends_finished(points, None, axis)
+}
+
+/// [`profile_ends`], with the share of each end's points that lie on the surface of
+/// revolution (`finished[i]` for `points[i]`) where that is given.
+pub fn profile_ends_finished(points: &[Point], finished: Option<&[bool]>, axis: &Axis) -> Option<ProfileEnds> {
     if points.len() < 30 {
         return None;
     }
@@ -208,6 +230,28 @@ pub fn profile_ends(points: &[Point], axis: &Axis) -> Option<ProfileEnds> {
     if full.len() < 4 {
         return None;
     }
+    // The points within a few spacings of each section's ends: a lip's are on the surface
+    // of revolution (it is turned like the skins), a break's are not (rough, slanted).
+    let depth = END_DEPTH_SPACINGS * point_spacing_mm.max(0.1);
+    let (mut upper_finished, mut lower_finished) = ([0usize; 2], [0usize; 2]);
+    if let Some(finished) = finished {
+        for (i, s) in samples.iter().enumerate() {
+            let k = (((s.angle - low) / span * sections as f64) as usize).min(sections - 1);
+            if counts[k] < 4 {
+                continue;
+            }
+            let along = (s.radius - mean_r) * ur + (s.height - mean_h) * uh;
+            if upper[k].is_some_and(|(v, _)| along >= v - depth) {
+                upper_finished[1] += 1;
+                upper_finished[0] += finished[i] as usize;
+            }
+            if lower[k].is_some_and(|(v, _)| along <= v + depth) {
+                lower_finished[1] += 1;
+                lower_finished[0] += finished[i] as usize;
+            }
+        }
+    }
+    let share = |[on, all]: [usize; 2]| if all == 0 { f64::NAN } else { on as f64 / all as f64 };
     // A tilt of the axis by a small angle (t1, t2) about the two horizontal directions
     // moves a rim's end along the profile by `radius (t1 cos angle + t2 sin angle)`.
     let lever: Vec<[f64; 2]> = full
@@ -231,6 +275,8 @@ pub fn profile_ends(points: &[Point], axis: &Axis) -> Option<ProfileEnds> {
         lower_spread_mm,
         upper_level_fraction,
         lower_level_fraction,
+        upper_finished_share: share(upper_finished),
+        lower_finished_share: share(lower_finished),
         upper,
         lower,
         max_radius_mm,
@@ -238,6 +284,9 @@ pub fn profile_ends(points: &[Point], axis: &Axis) -> Option<ProfileEnds> {
         section_count: full.len(),
     })
 }
+
+/// How deep below each section's end the points of the end reach, in point spacings.
+const END_DEPTH_SPACINGS: f64 = 2.0;
 
 /// Steepest tilt of a level edge allowed for the error of the axis and a hand-made
 /// rim's slant (tangent of about 3 degrees).
@@ -262,7 +311,8 @@ fn coarseness(spacing_mm: f64) -> f64 {
 
 /// How level one end is: the smallest median absolute deviation of the sections' ends
 /// (`values`, outward positive, in order round the axis) and the largest fraction of
-/// sections in one run whose ends lie within `band_mm` of the outermost, over the tilts up to [`MAX_EDGE_TILT`]
+/// sections in one run whose ends lie in the band `band_mm` wide that holds the most of
+/// them, over the tilts up to [`MAX_EDGE_TILT`]
 /// about either horizontal direction (`lever`: what a unit tilt about each moves a
 /// section's end by).
 fn level_measures(values: &[f64], lever: &[[f64; 2]], band_mm: f64) -> (f64, f64) {
@@ -279,14 +329,20 @@ fn level_measures(values: &[f64], lever: &[[f64; 2]], band_mm: f64) -> (f64, f64
             let centre = upper_median(&detilted);
             let deviations: Vec<f64> = detilted.iter().map(|v| (v - centre).abs()).collect();
             best_spread = best_spread.min(upper_median(&deviations));
-            // The outermost but one, so that a single spike is not taken for the edge.
-            let mut sorted = detilted.clone();
-            sorted.sort_by(|a, b| b.total_cmp(a));
-            let outermost = sorted[1.min(sorted.len() - 1)];
-            // A rim is one arc: the longest run of neighbouring sections on the edge.
+            // The edge is the band holding the most sections' ends (the outermost ends can
+            // be a corner where a break meets the lip, or a spike of the scan); a rim is
+            // one arc: the longest run of neighbouring sections in that band.
+            let top = detilted
+                .iter()
+                .copied()
+                .max_by(|a, b| {
+                    let count = |c: f64| detilted.iter().filter(|v| **v <= c && **v >= c - band_mm).count();
+                    count(*a).cmp(&count(*b)).then(a.total_cmp(b))
+                })
+                .expect("sections");
             let (mut run, mut longest) = (0usize, 0usize);
             for v in &detilted {
-                run = if (outermost - v).abs() <= band_mm { run + 1 } else { 0 };
+                run = if *v <= top && *v >= top - band_mm { run + 1 } else { 0 };
                 longest = longest.max(run);
             }
             best_fraction = best_fraction.max(longest as f64 / values.len() as f64);
@@ -303,7 +359,16 @@ fn level_edge_cue(ends: &ProfileEnds) -> (f64, String) {
     } else {
         (ends.lower_spread_mm, ends.upper_spread_mm, ends.lower_level_fraction, ends.upper_level_fraction, ends.lower, ends.upper)
     };
-    let ratio = other / level.max(1e-3);
+    let (level_finished, other_finished) = if upper_is_level {
+        (ends.upper_finished_share, ends.lower_finished_share)
+    } else {
+        (ends.lower_finished_share, ends.upper_finished_share)
+    };
+    // A level end made of break faces is a break that ran level (along a carination or a
+    // rill), not a rim: a lip is turned like the skins.
+    if level_finished < MIN_FINISHED_SHARE || level_finished < other_finished {
+        return (0.0, String::new());
+    }
     let rise = level_end[1] - other_end[1];
     let scale = coarseness(ends.point_spacing_mm);
     if level_fraction < MIN_LEVEL_FRACTION || rise.abs() < MIN_RISE_MM * scale {
@@ -312,6 +377,7 @@ fn level_edge_cue(ends: &ProfileEnds) -> (f64, String) {
     // With the rim along most of the arc the spreads compare the two ends directly; along
     // less than half of it they measure the breaks beside the rim, and only the runs of
     // level sections compare.
+    let ratio = other / level.max(1e-3);
     let strength = if level_fraction >= 0.5 {
         if level > LEVEL_SPREAD_MM * scale || ratio < LEVEL_MIN_RATIO || (other_fraction > 0.5 * level_fraction && ratio < LEVEL_FULL_RATIO) {
             return (0.0, String::new());
@@ -372,26 +438,45 @@ fn wall_share(samples: &[Sample]) -> f64 {
 }
 
 /// The floor cue on the lines of the surface of revolution: `Some(sense)` when a flat
-/// surface of at least `min_share` of the piece reaches inside `max_inner_radius_ratio`
-/// of the wall's radius.
+/// surface (normal within [`FLOOR_NORMAL_DEG`] of the axis) of at least `min_share` of the
+/// piece reaches inside `max_inner_radius_ratio` of the median radius of the rest of the
+/// piece (normals farther than [`RISE_NORMAL_DEG`] from the axis: a wall, or a plate's low
+/// rise), and the rest lies clear of it on one side, outside it: the wall rises from the
+/// floor. The rest need not be steep: a dish's floor turns into a wall a few degrees from
+/// flat, which the floor's own normals already tell from it.
 fn floor_cue(samples: &[Sample], min_share: f64, max_inner_radius_ratio: f64) -> Option<f64> {
     let total: f64 = samples.iter().map(|s| s.weight).sum();
-    let wall: Vec<&Sample> = samples.iter().filter(|s| s.is_wall()).collect();
-    let flat: Vec<&Sample> = samples.iter().filter(|s| s.normal_axial.abs() > 0.85).collect();
-    let wall_weight: f64 = wall.iter().map(|s| s.weight).sum();
+    let flat_limit = FLOOR_NORMAL_DEG.to_radians().cos();
+    let rise_limit = RISE_NORMAL_DEG.to_radians().cos();
+    let rest: Vec<&Sample> = samples.iter().filter(|s| s.normal_axial.abs() <= rise_limit).collect();
+    let flat: Vec<&Sample> = samples.iter().filter(|s| s.normal_axial.abs() > flat_limit).collect();
+    let rest_weight: f64 = rest.iter().map(|s| s.weight).sum();
     let flat_weight: f64 = flat.iter().map(|s| s.weight).sum();
-    if !(flat_weight > min_share * total && wall_weight > MIN_WALL_SHARE * total) {
+    if !(flat_weight > min_share * total && rest_weight > MIN_WALL_SHARE * total) {
         return None;
     }
-    let wall_radius = weighted_median(wall.iter().map(|s| (s.radius, s.weight)));
+    let rest_radius = weighted_median(rest.iter().map(|s| (s.radius, s.weight)));
+    let flat_radius = weighted_median(flat.iter().map(|s| (s.radius, s.weight)));
     let flat_inner_radius = weighted_quantile(flat.iter().map(|s| (s.radius, s.weight)), 0.25);
-    if flat_inner_radius >= max_inner_radius_ratio * wall_radius {
+    if flat_inner_radius >= max_inner_radius_ratio * rest_radius || flat_radius >= rest_radius {
         return None;
     }
     let flat_height = weighted_median(flat.iter().map(|s| (s.height, s.weight)));
-    let wall_height = weighted_median(wall.iter().map(|s| (s.height, s.weight)));
-    Some((wall_height - flat_height).signum())
+    let rest_height = weighted_median(rest.iter().map(|s| (s.height, s.weight)));
+    let rise = rest_height - flat_height;
+    (rise.abs() >= MIN_FLOOR_RISE_MM).then(|| rise.signum())
 }
+
+/// A floor's normals keep within this angle of the axis, degrees (a flat base, a slightly
+/// domed or sagging floor).
+const FLOOR_NORMAL_DEG: f64 = 8.0;
+/// The rest of a base piece turns farther than this from the axis, degrees: a dish's
+/// floor turns into a wall rising a few degrees from flat.
+const RISE_NORMAL_DEG: f64 = FLOOR_NORMAL_DEG;
+/// The rest of the piece must lie at least this far above (or below) the floor along the
+/// axis for the floor to tell which way is up, mm: several times a smoothed scan's noise,
+/// in medians over hundreds of points.
+const MIN_FLOOR_RISE_MM: f64 = 0.25;
 
 /// The area-weighted mean slope `dr/dz` of the wall. The tangent `(dr, dz)` of the
 /// profile is normal to `(n_r, n_z)` on either skin (the inner skin's normal is the
@@ -410,6 +495,19 @@ fn wall_slope(samples: &[Sample]) -> Option<f64> {
 /// surface of revolution (`lines` with `on_surface[i]`), the level edge on all the
 /// points of the piece (`all_points`: breaks and rim included).
 pub fn direction_evidence(lines: &NormalLines, on_surface: &[bool], all_points: &[Point], axis: &Axis) -> DirectionEvidence {
+    direction_evidence_finished(lines, on_surface, all_points, None, axis)
+}
+
+/// [`direction_evidence`], the level-edge cue told which of `all_points` lie on the
+/// surface of revolution (`all_finished`), so that a level break is not taken for a rim.
+/// Without it the level-edge cue goes by levelness alone.
+pub fn direction_evidence_finished(
+    lines: &NormalLines,
+    on_surface: &[bool],
+    all_points: &[Point],
+    all_finished: Option<&[bool]>,
+    axis: &Axis,
+) -> DirectionEvidence {
     let d = axis.direction.into_inner();
     let samples: Vec<Sample> = (0..lines.len())
         .filter(|&i| on_surface[i])
@@ -425,11 +523,13 @@ pub fn direction_evidence(lines: &NormalLines, on_surface: &[bool], all_points: 
         .collect();
     let mut cues = SenseCues::default();
     let mut level_text = String::new();
-    if let Some(ends) = profile_ends(all_points, axis) {
+    if let Some(ends) = profile_ends_finished(all_points, all_finished, axis) {
         cues.upper_end_spread_mm = ends.upper_spread_mm;
         cues.lower_end_spread_mm = ends.lower_spread_mm;
         cues.upper_level_fraction = ends.upper_level_fraction;
         cues.lower_level_fraction = ends.lower_level_fraction;
+        cues.upper_finished_share = ends.upper_finished_share;
+        cues.lower_finished_share = ends.lower_finished_share;
         (cues.level_edge, level_text) = level_edge_cue(&ends);
     }
     let total: f64 = samples.iter().map(|s| s.weight).sum();
@@ -451,32 +551,45 @@ pub fn direction_evidence(lines: &NormalLines, on_surface: &[bool], all_points: 
     combine(cues, level_text)
 }
 
-/// Combines the cues: the floor and the level edge are strong and must agree; the
-/// opening decides only when both are silent.
+/// Combines the cues. A floor decides: where the level edge says the other way, the
+/// level end is the floor's own foot or centre, which is level too. Without a floor the
+/// level edge decides, unless a small floor (a strip of underside beside a foot) says the
+/// other way. Otherwise the small floor and the opening add up, and decide only together
+/// or where the wall flares clearly.
 fn combine(cues: SenseCues, level_text: String) -> DirectionEvidence {
     let floor_text = "floor: the wall rises from a flat base";
     let (floor, level) = (cues.floor, cues.level_edge);
-    if floor != 0.0 && level != 0.0 && floor.signum() != level.signum() {
-        let cue = format!("conflict: the floor says one way, the level edge the other ({level_text})");
-        return DirectionEvidence { score: 0.0, cue, cues };
+    if floor != 0.0 {
+        let cue = if level != 0.0 && level.signum() == floor.signum() {
+            format!("{floor_text}, and {level_text}")
+        } else if level != 0.0 {
+            format!("{floor_text} (its foot is the level end of the profile)")
+        } else {
+            floor_text.into()
+        };
+        return DirectionEvidence { score: floor, cue, cues };
     }
     if cues.small_floor != 0.0 && level != 0.0 && cues.small_floor.signum() != level.signum() {
         let cue = format!("conflict: a small floor says one way, the level edge the other: a base's foot is level too ({level_text})");
         return DirectionEvidence { score: 0.0, cue, cues };
     }
-    if floor != 0.0 {
-        let cue = if level != 0.0 { format!("{floor_text}, and {level_text}") } else { floor_text.into() };
-        return DirectionEvidence { score: floor, cue, cues };
-    }
     if level != 0.0 {
         return DirectionEvidence { score: level, cue: level_text, cues };
     }
-    if cues.opening != 0.0 {
-        let cue = format!("opening: the wall widens towards the rim (slope dr/dz {:.2})", cues.wall_slope.abs());
-        return DirectionEvidence { score: cues.opening, cue, cues };
+    let score = (SMALL_FLOOR_WEIGHT * cues.small_floor + cues.opening).clamp(-1.0, 1.0);
+    if score != 0.0 {
+        let mut cue = format!("opening: the wall widens towards the rim (slope dr/dz {:.2})", cues.wall_slope.abs());
+        if cues.small_floor != 0.0 {
+            cue = format!("{cue}, with a small flat part at its foot");
+        }
+        return DirectionEvidence { score, cue, cues };
     }
     DirectionEvidence { score: 0.0, cue: "no cue to the sense: no floor, no level edge, no slope".into(), cues }
 }
+
+/// What a small floor adds to the opening's confidence: with a wall that flares by a
+/// third, together they reach the verdict's limit.
+const SMALL_FLOOR_WEIGHT: f64 = 0.35;
 
 #[cfg(test)]
 mod tests {
@@ -516,14 +629,19 @@ mod tests {
         }
     }
 
-    /// Two strong cues that disagree give no sense at all.
+    /// A floor decides against a level edge (the level end is its own foot); a small floor
+    /// against a level edge gives no sense; the opening alone stays weak.
     #[test]
-    fn conflicting_cues_give_no_sense() {
-        let cues = SenseCues { floor: 1.0, level_edge: -0.9, opening: 0.6, ..Default::default() };
-        let evidence = combine(cues, "level rim".into());
-        assert_eq!(evidence.score, 0.0);
-        assert!(evidence.cue.starts_with("conflict"), "{}", evidence.cue);
+    fn a_floor_outweighs_the_level_edge_and_a_small_floor_vetoes_it() {
+        let floor_against_edge = combine(SenseCues { floor: 1.0, level_edge: -0.9, opening: 0.6, ..Default::default() }, "level rim".into());
+        assert_eq!(floor_against_edge.score, 1.0, "{}", floor_against_edge.cue);
+        assert!(floor_against_edge.cue.contains("foot"), "{}", floor_against_edge.cue);
+        let small_against_edge = combine(SenseCues { small_floor: -1.0, level_edge: 0.9, ..Default::default() }, "level rim".into());
+        assert_eq!(small_against_edge.score, 0.0);
+        assert!(small_against_edge.cue.starts_with("conflict"), "{}", small_against_edge.cue);
         let alone = combine(SenseCues { opening: -0.3, ..Default::default() }, String::new());
         assert!(alone.score.abs() <= OPENING_MAX_CONFIDENCE && alone.score < 0.0);
+        let together = combine(SenseCues { opening: 0.3, small_floor: 1.0, ..Default::default() }, String::new());
+        assert!(together.score > alone.score.abs() && together.score <= 1.0, "{}", together.score);
     }
 }

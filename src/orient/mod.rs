@@ -12,11 +12,13 @@ pub mod accuracy;
 pub mod axis;
 pub mod direction;
 pub mod halir;
+pub mod landscape;
 pub mod line_complex;
 pub mod mm_regression;
 pub mod normal_lines;
 pub mod opposite_normals;
 pub mod region_stability;
+pub mod revolution_search;
 pub mod surfaces;
 pub mod three_points;
 pub mod verdict;
@@ -40,9 +42,6 @@ use normal_lines::NormalLines;
 /// value (a C caller's `SIZE_MAX`) from running for ever.
 pub const MAX_SMOOTHING_ITERATIONS: usize = 1000;
 
-/// The points closer to the axis than this fraction of the sherd's median radius are where
-/// the axis passes through the sherd (see [`verdict::axis_crossing_curvature_radius_mm`]).
-const AXIS_CROSSING_NEAR_FRACTION: f64 = 0.1;
 
 /// Options of [`orient_automatic`].
 #[derive(Clone, Debug)]
@@ -57,6 +56,8 @@ pub struct OrientOptions {
     pub sampler: SamplerOptions,
     /// The multi-start search and the MM refinement.
     pub halir: HalirOptions,
+    /// The whole-sphere search.
+    pub search: revolution_search::SearchOptions,
     /// When the result is judged unreliable.
     pub thresholds: VerdictThresholds,
 }
@@ -69,6 +70,7 @@ impl Default for OrientOptions {
             opposite_normal_confidence: Some(0.95),
             sampler: SamplerOptions::default(),
             halir: HalirOptions::default(),
+            search: revolution_search::SearchOptions::default(),
             thresholds: VerdictThresholds::default(),
         }
     }
@@ -98,6 +100,9 @@ pub struct Orientation {
     pub axis: Axis,
     /// Whether the axis can be used.
     pub verdict: Verdict,
+    /// Why an axis given as found may still be wrong (another axis fits about as well):
+    /// such an axis is `axis_uncertain`. Empty when there is none.
+    pub doubts: Vec<String>,
     /// Calibrated uncertainty of the direction, degrees (NaN for a manual axis).
     pub angle_uncertainty_deg: f64,
     /// Calibrated uncertainty of the axis position near the sherd, millimetres (NaN for a
@@ -107,6 +112,9 @@ pub struct Orientation {
     pub kept_vertex_count: usize,
     /// The details, for `--json` and the archaeologist's record.
     pub report: OrientReport,
+    /// What the sense cues read, for [`Orientation::rejudge_sense`] (automatic
+    /// orientations).
+    pub sense_inputs: Option<std::sync::Arc<SenseInputs>>,
 }
 
 /// Serialisable details of an orientation.
@@ -151,8 +159,17 @@ pub struct OrientReport {
     /// millimetres (see [`verdict::axis_crossing_curvature_radius_mm`]); `None` where the
     /// axis runs clear of the sherd.
     pub axis_crossing_curvature_radius_mm: Option<f64>,
-    /// Angle to the best competing axis, degrees, and its cost relative to the best.
+    /// Angle to the best competing axis, degrees, and the t statistic by which the best
+    /// fits the piece better, block by block (see [`landscape::separation`]).
     pub competitor: Option<(f64, f64)>,
+    /// The whole-sphere search's robust score of the axis (0 for a perfect surface of
+    /// revolution, 0.9 when no point is on one).
+    #[serde(default)]
+    pub search_cost: f64,
+    /// The least relative rise of that score when the axis moves 10 mm across itself (see
+    /// [`landscape::position_hold`]): near 0 where the piece does not fix the position.
+    #[serde(default)]
+    pub position_hold: f64,
     /// The cue that set the sense base to rim, or why none could.
     pub direction_cue: String,
     /// Confidence in the sense base to rim, 0 to 1 (see [`direction::DirectionEvidence`]).
@@ -230,55 +247,208 @@ pub fn orient_automatic_with_decimated(mesh: &Mesh, decimated: Option<&Mesh>, op
     }
     let centered = CenteredLines::new(&lines);
     report.normal_spread = verdict::normal_spread(&centered);
-    let global = line_complex::fit_complex(&centered, None, None);
-    report.concurrency_ratio = global.map_or(1.0, |g| g.concurrency_ratio());
-    let sampler = options.sampler;
-    let seeds = line_complex::sample_hypotheses(&centered, &sampler);
-    lap("line complex and sampler", &mut clock);
-    let candidates = halir::multi_start(&centered, &seeds, &options.halir);
-    lap("multi-start", &mut clock);
-    let directions: Vec<_> = candidates.iter().map(|h| h.direction).take(options.halir.candidates_refined.max(1)).collect();
-    let fit = halir::refine_candidates(&centered, &directions, &options.halir)
-        .ok_or_else(|| Error::DegenerateGeometry("no axis candidate could be refined".into()))?;
-    lap("MM refinement", &mut clock);
+    report.concurrency_ratio = line_complex::fit_complex(&centered, None, None).map_or(1.0, |g| g.concurrency_ratio());
+    let Some(landscape) = revolution_search::search(&lines, &options.search) else {
+        let reason = format!("too few points on the surface of revolution: {} kept", lines.len());
+        return Ok(unoriented(mesh, reason, report, lines.len()));
+    };
+    lap("whole-sphere search", &mut clock);
+    let Some(best) = landscape.valleys.first().copied() else {
+        let reason = "no axis makes the piece a surface of revolution".to_string();
+        return Ok(unoriented(mesh, reason, report, lines.len()));
+    };
+    let mut axis = best.axis(&landscape.samples);
+    report.search_cost = best.fit.cost;
+    report.inlier_fraction = best.fit.inlier_share;
+    let blocks = landscape::sample_blocks(&landscape.samples);
+    let competitors = landscape::competing_valleys(&landscape, &blocks, MIN_COMPETITOR_ANGLE_DEG);
+    let closest = competitors.iter().copied().min_by(|a, b| a.1.t_statistic.total_cmp(&b.1.t_statistic));
+    report.competitor = closest.map(|(angle, separation)| (angle, separation.t_statistic));
+    report.position_hold = landscape::position_hold(&landscape.samples, &axis, POSITION_PROBE_MM, landscape.loss_scale_mm);
+    lap("landscape verdict", &mut clock);
 
-    let scale_mm = centered.scale_mm;
-    let mut axis = centered.to_scan_frame(&fit.point, &fit.direction);
-    let inliers: Vec<bool> = fit.robust_weights.iter().map(|w| *w > 0.0).collect();
-    report.inlier_fraction = inliers.iter().filter(|k| **k).count() as f64 / inliers.len() as f64;
-    // Residuals are algebraic (distance times sine) in centred units; their scale in mm.
-    report.residual_scale_mm = fit.scale * scale_mm;
-    report.raw_angle_sigma_deg = fit.angle_sigma_rad.to_degrees();
-    report.competitor = verdict::best_competitor(&fit);
-    let stability = region_stability::leave_one_region_out(&centered, &fit, &options.halir);
-    report.region_turn_deg = stability.largest_turn_deg;
-    report.region_turn_in_meridian_deg = stability.largest_turn_in_meridian_deg;
-    lap("region stability", &mut clock);
-    let evidence = direction::direction_evidence(&lines, &inliers, &all_lines.points, &axis);
-    if evidence.score < 0.0 {
-        axis = axis.flipped();
-    }
-    report.direction_cue = evidence.cue;
-    report.direction_strength = evidence.score.abs();
-    report.sense_cues = evidence.cues;
-    axis = axis.normalized(&lines.centroid());
+    let sense_inputs = SenseInputs {
+        samples: revolution_search::RevolutionSamples::from_lines(&lines, lines.len(), options.search.band_spacings, options.search.min_band_mm),
+        all_samples: revolution_search::RevolutionSamples::from_lines(&all_lines, all_lines.len(), options.search.band_spacings, options.search.min_band_mm),
+        lines: lines.clone(),
+        all_points: all_lines.points.clone(),
+        loss_scale_mm: landscape.loss_scale_mm,
+        min_confidence: options.thresholds.min_sense_confidence,
+    };
+    let (oriented, evidence) = sense_inputs.judge(&axis);
+    axis = oriented.normalized(&lines.centroid());
+    let on_surface = sense_inputs.on_surface(&axis);
     let mut radii: Vec<f64> = lines.points.iter().map(|p| axis.distance_to(p)).collect();
     radii.sort_unstable_by(f64::total_cmp);
     report.median_radius_mm = radii[radii.len() / 2];
-    report.residual_angle_deg = verdict::axis_residual_angle_deg(&lines, &axis, &inliers);
-    report.sphere_residual_angle_deg = verdict::sphere_residual_angle_deg(&lines, &inliers);
-    report.axis_crossing_curvature_radius_mm =
-        verdict::axis_crossing_curvature_radius_mm(&lines, &axis, AXIS_CROSSING_NEAR_FRACTION * report.median_radius_mm);
+    report.residual_angle_deg = verdict::axis_residual_angle_deg(&lines, &axis, &on_surface);
     lap("direction", &mut clock);
 
-    let calibration = &options.thresholds;
-    let angle_uncertainty_deg = fit.angle_sigma_rad.to_degrees() * calibration.angle_sigma_factor;
-    let position_uncertainty_mm = fit.point_sigma * scale_mm * calibration.angle_sigma_factor;
-    let verdict = verdict::judge(&report, angle_uncertainty_deg, position_uncertainty_mm, calibration);
+    let sense_verdict = sense_inputs.verdict(&evidence);
+    let mut doubts = Vec::new();
+    let mut crossing_unresolved = None;
+    let unresolved: Vec<&(f64, landscape::Separation)> = competitors.iter().filter(|(_, s)| !(s.t_statistic >= MIN_SEPARATION_T)).collect();
+    let describe = |(angle, separation): &(f64, landscape::Separation)| {
+        format!(
+            "another axis {angle:.0} degrees away fits the piece almost as well (the best fits better in {} blocks of the piece by t = {:.1}, at least {MIN_SEPARATION_T} wanted)",
+            separation.blocks, separation.t_statistic
+        )
+    };
+    // An axis across the best one makes the piece a surface of revolution about the other
+    // principal curvature (a jar's belly, a near-spherical piece, a tiny piece): only a
+    // lip level under the best tells the two apart. Not a floor: under a wrong axis
+    // through a near-spherical piece its cap reads as one.
+    let level_lip = evidence.cues.level_edge.abs() >= options.thresholds.min_sense_confidence;
+    if let Some(crossing) = unresolved.iter().find(|(angle, _)| *angle > verdict::CROSSING_COMPETITOR_ANGLE_DEG).filter(|_| !level_lip) {
+        crossing_unresolved = Some(describe(crossing));
+    } else if let Some(nearest) = unresolved.iter().min_by(|a, b| a.1.t_statistic.total_cmp(&b.1.t_statistic)) {
+        doubts.push(describe(nearest));
+    }
+    let line_verdict = if !best.fit.position_fixed || report.normal_spread < options.thresholds.min_normal_spread {
+        Some(Verdict::NeedsManualOrientation {
+            reason: format!(
+                "the normals are nearly parallel (spread {:.3}): a flat piece gives the axis's direction but not its position",
+                report.normal_spread
+            ),
+        })
+    } else if !(report.position_hold >= MIN_POSITION_HOLD) {
+        Some(Verdict::NeedsManualOrientation {
+            reason: format!(
+                "the piece does not fix the axis's position: moved {POSITION_PROBE_MM} mm, the axis fits it at worst {:.0}% worse (at least {:.0}% wanted): a flat piece, or a floor without its foot",
+                100.0 * report.position_hold,
+                100.0 * MIN_POSITION_HOLD
+            ),
+        })
+    } else if best.fit.inlier_share < MIN_INLIER_SHARE {
+        Some(Verdict::NeedsManualOrientation {
+            reason: format!(
+                "no axis makes more than {:.0}% of the piece a surface of revolution (the best: {:.0}%)",
+                100.0 * MIN_INLIER_SHARE,
+                100.0 * best.fit.inlier_share
+            ),
+        })
+    } else {
+        crossing_unresolved.map(|competitor| Verdict::NeedsManualOrientation {
+            reason: format!("{competitor}, and nothing on the sherd (floor, level edge) says which is the vessel's: a doubly curved or near-spherical piece"),
+        })
+    };
+    let verdict = line_verdict.unwrap_or(sense_verdict);
+    if !verdict.has_axis_line() {
+        // A declined piece's reason says what is wrong; doubts are about answers.
+        doubts.clear();
+    }
+    record_sense(&mut report, &evidence);
     report.timings_ms = timings;
     let kept_vertex_count = lines.len();
-    Ok(Orientation { axis, verdict, angle_uncertainty_deg, position_uncertainty_mm, kept_vertex_count, report })
+    Ok(Orientation {
+        axis,
+        verdict,
+        doubts,
+        angle_uncertainty_deg: f64::NAN,
+        position_uncertainty_mm: f64::NAN,
+        kept_vertex_count,
+        report,
+        sense_inputs: Some(std::sync::Arc::new(sense_inputs)),
+    })
 }
+
+/// What the sense cues read, kept with an automatic orientation so that the sense can be
+/// judged again under the refined axis: the cues read the ends, floor and slope of the
+/// profile, which a pre-orientation a few degrees off blurs.
+#[derive(Debug)]
+pub struct SenseInputs {
+    samples: Option<revolution_search::RevolutionSamples>,
+    all_samples: Option<revolution_search::RevolutionSamples>,
+    lines: NormalLines,
+    all_points: Vec<Point>,
+    loss_scale_mm: f64,
+    min_confidence: f64,
+}
+
+impl SenseInputs {
+    /// Which lines lie on the surface of revolution about `axis`.
+    fn on_surface(&self, axis: &Axis) -> Vec<bool> {
+        on_surface_of(self.samples.as_ref(), self.lines.len(), axis, self.loss_scale_mm)
+    }
+
+    /// The line of `axis` pointed from base to rim as the cues say, and the cues.
+    pub fn judge(&self, axis: &Axis) -> (Axis, direction::DirectionEvidence) {
+        let finished = self.all_samples.as_ref().map(|_| on_surface_of(self.all_samples.as_ref(), self.all_points.len(), axis, self.loss_scale_mm));
+        let evidence = direction::direction_evidence_finished(&self.lines, &self.on_surface(axis), &self.all_points, finished.as_deref(), axis);
+        let oriented = if evidence.score < 0.0 { axis.flipped() } else { *axis };
+        (oriented, evidence)
+    }
+
+    /// [`Verdict::Oriented`] when the cues are confident, [`Verdict::SenseUncertain`]
+    /// otherwise.
+    pub fn verdict(&self, evidence: &direction::DirectionEvidence) -> Verdict {
+        if evidence.score.abs() >= self.min_confidence {
+            Verdict::Oriented
+        } else {
+            Verdict::SenseUncertain {
+                reason: format!(
+                    "the axis line is found but not which way is up (base to rim): {} (confidence {:.2} < {:.2})",
+                    evidence.cue,
+                    evidence.score.abs(),
+                    self.min_confidence
+                ),
+            }
+        }
+    }
+}
+
+/// Which of the `count` points of `samples` (all of their lines) lie on the surface of
+/// revolution about `axis`: all of them when there are no samples.
+fn on_surface_of(samples: Option<&revolution_search::RevolutionSamples>, count: usize, axis: &Axis, loss_scale_mm: f64) -> Vec<bool> {
+    match samples {
+        Some(all) => revolution_search::point_losses(all, axis, loss_scale_mm).iter().map(|l| *l < ON_SURFACE_LOSS).collect(),
+        None => vec![true; count],
+    }
+}
+
+/// Writes the cues into the report.
+fn record_sense(report: &mut OrientReport, evidence: &direction::DirectionEvidence) {
+    report.direction_cue = evidence.cue.clone();
+    report.direction_strength = evidence.score.abs();
+    report.sense_cues = evidence.cues.clone();
+}
+
+impl Orientation {
+    /// The sense judged again under `axis` (a refinement of this orientation's axis line):
+    /// `axis` pointed from base to rim as the cues read it there, with the verdict and the
+    /// report updated. An orientation that declined, or a manual one, keeps its verdict and
+    /// only points `axis` like its own.
+    pub fn rejudge_sense(&mut self, axis: &Axis) -> Axis {
+        let Some(inputs) = self.sense_inputs.clone().filter(|_| self.verdict.has_axis_line()) else {
+            return if axis.direction.dot(&self.axis.direction) < 0.0 { axis.flipped() } else { *axis };
+        };
+        let (oriented, evidence) = inputs.judge(axis);
+        self.verdict = inputs.verdict(&evidence);
+        record_sense(&mut self.report, &evidence);
+        self.axis = if oriented.direction.dot(&self.axis.direction) < 0.0 { self.axis.flipped() } else { self.axis };
+        oriented
+    }
+}
+
+/// Valleys of the landscape nearer than this to the best lie in the refinement's reach,
+/// degrees (it searches 10 degrees about its start): they are not competitors.
+const MIN_COMPETITOR_ANGLE_DEG: f64 = 15.0;
+/// The least t statistic of the best valley over a competitor, block by block, for the
+/// landscape to have picked one axis (a one-sided test at about 1% with 10-16 blocks);
+/// below it the axis is given as uncertain.
+const MIN_SEPARATION_T: f64 = 3.0;
+/// How far the position probe moves the best axis, mm: well past what makes an axis
+/// wrong (4 mm of mean point distance).
+const POSITION_PROBE_MM: f64 = 10.0;
+/// The least relative rise of the loss over that move for the piece to fix the axis's
+/// position: a tenth, where a flat piece's loss moves by a few percent either way (its
+/// noise) and a wall's, even a short arc's, at least doubles.
+const MIN_POSITION_HOLD: f64 = 0.1;
+/// The least share of the piece the best axis must put on a surface of revolution.
+const MIN_INLIER_SHARE: f64 = 0.5;
+/// Robust loss under which a point counts as on the surface of revolution for the sense
+/// cues (a residual of about a loss scale).
+const ON_SURFACE_LOSS: f64 = 0.5;
 
 /// Options in their bounds and a valid, non-empty mesh whose vertices are not all in one plane.
 fn check_orientable(mesh: &Mesh, options: &OrientOptions) -> Result<()> {
@@ -329,17 +499,19 @@ fn unoriented(mesh: &Mesh, reason: String, report: OrientReport, kept: usize) ->
     Orientation {
         axis: Axis::new(center, crate::mesh::Vector::z()),
         verdict: Verdict::NeedsManualOrientation { reason },
+        doubts: Vec::new(),
         angle_uncertainty_deg: f64::INFINITY,
         position_uncertainty_mm: f64::INFINITY,
         kept_vertex_count: kept,
         report,
+        sense_inputs: None,
     }
 }
 
 /// The working copy the paper orients on: decimated to about the target vertex count
 /// (`decimated`, from [`decimated_copy`]) and smoothed (meshes); point clouds are thinned
 /// by an even stride.
-fn working_copy(mesh: &Mesh, decimated: Option<&Mesh>, options: &OrientOptions) -> Result<Mesh> {
+pub fn working_copy(mesh: &Mesh, decimated: Option<&Mesh>, options: &OrientOptions) -> Result<Mesh> {
     if mesh.is_point_cloud() {
         if mesh.normals.is_none() {
             return Err(Error::InvalidArgument(
@@ -377,6 +549,13 @@ fn working_copy(mesh: &Mesh, decimated: Option<&Mesh>, options: &OrientOptions) 
     }
     working.normals = None; // recomputed from the smoothed faces by NormalLines
     Ok(working)
+}
+
+/// The normal lines of `working` (a [`working_copy`]) on the surface of revolution, as the
+/// opposite-normal test leaves them (all of them where it cannot run or keeps too few).
+pub fn surface_of_revolution_lines(working: &Mesh, options: &OrientOptions) -> Result<NormalLines> {
+    let all_lines = NormalLines::from_mesh(working)?;
+    Ok(select_surface_of_revolution(working, &all_lines, options, &mut OrientReport::default()))
 }
 
 /// The lines on the surface of revolution: the opposite-normal test on meshes, all lines
@@ -475,9 +654,11 @@ pub fn orient_from_three_points(mesh: &Mesh, points: [Point; 3], options: &Manua
     Ok(Orientation {
         axis: axis.normalized(&circle.center),
         verdict: Verdict::Oriented,
+        doubts: Vec::new(),
         angle_uncertainty_deg: f64::NAN,
         position_uncertainty_mm: f64::NAN,
         kept_vertex_count,
         report,
+        sense_inputs: None,
     })
 }
