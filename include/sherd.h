@@ -716,7 +716,9 @@ typedef struct {
    */
   bool oriented;
   /**
-   * Calibrated uncertainty of the direction, degrees (NaN for a manual axis).
+   * Calibrated uncertainty of the direction, degrees (NaN where it is not estimated, as
+   * for a manual axis); infinite when the automatic orientation found no axis at all
+   * (the axis written is then no guess: see `sherd_orient_automatic`).
    */
   double angle_uncertainty_deg;
   /**
@@ -1246,7 +1248,10 @@ SherdStatus sherd_mesh_oriented_transform(const SherdMesh *mesh,
  * Returns `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` when the fragment does not determine
  * its axis (a flat base piece, a near-spherical piece, one too small): the axis is
  * still written, as a best guess not to be trusted, and the message gives the reason;
- * ask the user for three points (`sherd_orient_from_three_points`).
+ * ask the user for three points (`sherd_orient_from_three_points`). When the fragment
+ * gave no axis at all (too few points on a surface of revolution), the report's
+ * `angle_uncertainty_deg` is infinite and the axis written is only a vertical through
+ * the centroid, no guess.
  * Returns `SHERD_STATUS_SENSE_UNCERTAIN` when the axis line is determined but not which
  * way is up (base to rim): the axis is written, its sense a guess.
  *
@@ -1683,8 +1688,12 @@ SherdStatus sherd_draw_options_set_title(SherdDrawOptions *options, const char *
  * scan's frame and units. `refine_options` may be NULL (criterion AUTO);
  * `millimetres_per_unit` is 1 for scans in millimetres.
  *
- * Returns `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` (record written, no axis) when the
- * sherd does not determine its axis; `SHERD_STATUS_SENSE_UNCERTAIN` (record and axis
+ * Returns `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` (record written, `out_axis` not) when
+ * the sherd does not determine its axis: the record's `"axis"` is null and its
+ * `"best_guess"` holds the axis the orientation still found, not to be trusted
+ * (`{"axis": {"point": [x, y, z], "direction": [dx, dy, dz]}, "against": reason,
+ * "sense_known": bool}`, scan frame and units, base to rim as the sense cues read it;
+ * null when it found none, too few points); `SHERD_STATUS_SENSE_UNCERTAIN` (record and axis
  * written, refined and measured) when it determines the axis line but not which way is up;
  * `SHERD_STATUS_OK` with the record's `"status"` `"axis_uncertain"` (and its `"reason"`)
  * when the axis is found but not pinned down: check it before using its figures. When

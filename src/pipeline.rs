@@ -75,6 +75,10 @@ pub struct Analysis {
     pub timings: Timings,
     /// Millimetres per unit of the scan's file (given, or declared by the file).
     pub millimetres_per_unit: f64,
+    /// The confidence in the sense (base to rim) the orientation's thresholds ask for
+    /// ([`crate::orient::VerdictThresholds::min_sense_confidence`]): the record's best
+    /// guess of a declined sherd calls its sense known from it.
+    pub min_sense_confidence: f64,
 }
 
 /// Seconds spent in each step of the pipeline.
@@ -103,6 +107,14 @@ impl Analysis {
     /// True when the sherd got an axis the pipeline stands behind, sense included.
     pub fn is_oriented(&self) -> bool {
         self.orientation.verdict.is_oriented()
+    }
+
+    /// True when the orientation found an axis, trusted or not; false when it found none
+    /// at all (too few points on the surface of revolution: it then stands in with an
+    /// arbitrary vertical axis through the centroid, marked by an infinite angle
+    /// uncertainty).
+    pub fn found_an_axis(&self) -> bool {
+        self.orientation.angle_uncertainty_deg != f64::INFINITY
     }
 
     /// Why the final axis wants a look before its figures are used, although the
@@ -191,27 +203,27 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
         measurements = Some(measure_with_bootstrap_mesh(&mesh, bootstrap_mesh, axis, &options.measure));
         timings.measure_s = clock.elapsed().as_secs_f64();
     }
-    // Without measurements (a sherd that needs manual orientation) the rills are traced
-    // under the declined axis: where to pick three points. An orientation that found no
-    // axis at all (too few points) stands in with an arbitrary one, under which level
-    // bumps are no rills.
-    let found_an_axis = orientation.angle_uncertainty_deg != f64::INFINITY;
-    let mut declined_axis_rills = Vec::new();
-    if measurements.is_none() && found_an_axis {
-        let clock = Instant::now();
-        declined_axis_rills = trace_rills_under(&mesh, &orientation.axis, &RillOptions::default());
-        timings.measure_s += clock.elapsed().as_secs_f64();
-    }
-    Ok(Analysis {
+    let mut analysis = Analysis {
         mesh,
         repair: repair_report,
         orientation,
         refinement,
         measurements,
-        declined_axis_rills,
+        declined_axis_rills: Vec::new(),
         timings,
         millimetres_per_unit: scale,
-    })
+        min_sense_confidence: options.orient.thresholds.min_sense_confidence,
+    };
+    // Without measurements (a sherd that needs manual orientation) the rills are traced
+    // under the declined axis: where to pick three points. An orientation that found no
+    // axis at all (too few points) stands in with an arbitrary one, under which level
+    // bumps are no rills.
+    if analysis.measurements.is_none() && analysis.found_an_axis() {
+        let clock = Instant::now();
+        analysis.declined_axis_rills = trace_rills_under(&analysis.mesh, &analysis.orientation.axis, &RillOptions::default());
+        analysis.timings.measure_s += clock.elapsed().as_secs_f64();
+    }
+    Ok(analysis)
 }
 
 impl PipelineOptions {
@@ -295,6 +307,23 @@ pub const STATUS_AXIS_UNCERTAIN: &str = "axis_uncertain";
 /// Status of a sherd that could not be processed (the reason is in `error`).
 pub const STATUS_ERROR: &str = "error";
 
+/// The axis the automatic orientation found for a sherd it declined (the best of its
+/// whole-sphere search), kept in the record of a `needs_manual_orientation` sherd: not an
+/// answer, but where to start looking. Use it as it is (`sherd draw --axis` and `sherd
+/// export --axis` take this object), flip it (negate `direction`) when the rim is at the
+/// bottom, or orient the sherd properly from three points (`--manual`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct BestGuess {
+    /// The axis in the scan's own frame and units, pointed from base to rim as the sense
+    /// cues read it under this axis.
+    pub axis: AxisRecord,
+    /// What speaks against it: why the orientation declined (the record's `reason`).
+    pub against: String,
+    /// True when the sense cues under this axis say which end is the rim as firmly as an
+    /// oriented sherd's must; false when which way is up is a guess too.
+    pub sense_known: bool,
+}
+
 /// One row of a batch report and the body of `sherd orient --json`.
 #[derive(Clone, Debug, Default, Serialize, Deserialize)]
 pub struct SherdRecord {
@@ -344,6 +373,11 @@ pub struct SherdRecord {
     /// For a sherd that needs manual orientation: three points on its longest rill, in the
     /// scan's units, to give to `--manual` (or to check in a viewer first).
     pub manual_points_on_rill: Option<[[f64; 3]; 3]>,
+    /// For a sherd that needs manual orientation: the axis the orientation still found,
+    /// not trusted (`axis` stays null: this is no answer). Null for every other status,
+    /// and when the orientation found no axis at all (too few points).
+    #[serde(default)]
+    pub best_guess: Option<BestGuess>,
     /// The drawing written, if any.
     pub drawing: Option<String>,
     /// Seconds per step.
@@ -377,6 +411,11 @@ impl SherdRecord {
                 record.manual_points_on_rill = analysis.rills().first().map(|rill| {
                     three_points_on(rill).map(|p| (p.coords / analysis.millimetres_per_unit).into())
                 });
+                record.best_guess = analysis.found_an_axis().then(|| BestGuess {
+                    axis: in_scan_units(&orientation.axis, analysis.millimetres_per_unit).record(),
+                    against: reason.clone(),
+                    sense_known: orientation.report.direction_strength >= analysis.min_sense_confidence,
+                });
                 return record;
             }
         }
@@ -387,9 +426,7 @@ impl SherdRecord {
             }
             record.reason = Some(record.reason.iter().cloned().chain(doubts.iter().cloned()).collect::<Vec<_>>().join("; "));
         }
-        let axis = analysis.axis();
-        let axis_in_scan_units = Axis { point: Point::from(axis.point.coords / analysis.millimetres_per_unit), direction: axis.direction };
-        record.axis = Some(axis_in_scan_units.record());
+        record.axis = Some(in_scan_units(analysis.axis(), analysis.millimetres_per_unit).record());
         record.residual_mm = Some(match &analysis.refinement {
             Some(refinement) => refinement.report.residual_mm,
             None => orientation.report.residual_scale_mm,
@@ -412,8 +449,10 @@ impl SherdRecord {
         record
     }
 
-    /// The columns of `report.csv`.
-    pub const CSV_HEADER: &'static str = "file,status,reason,rim_diameter_mm,rim_diameter_low_mm,rim_diameter_high_mm,base_diameter_mm,base_diameter_low_mm,base_diameter_high_mm,sector_angle_deg,sector_percent,height_mm,wall_thickness_mm,capacity_litres,axis_angle_upper_deg,residual_mm,method,drawing,read_s,repair_s,orient_s,refine_s,measure_s,draw_s,rill_count,rill_slope_deg,axis_distance_upper_mm";
+    /// The columns of `report.csv`. New columns are added at the end, so that a reader
+    /// that takes them by position keeps working; the best guess's (a declined sherd's)
+    /// are empty on every other row.
+    pub const CSV_HEADER: &'static str = "file,status,reason,rim_diameter_mm,rim_diameter_low_mm,rim_diameter_high_mm,base_diameter_mm,base_diameter_low_mm,base_diameter_high_mm,sector_angle_deg,sector_percent,height_mm,wall_thickness_mm,capacity_litres,axis_angle_upper_deg,residual_mm,method,drawing,read_s,repair_s,orient_s,refine_s,measure_s,draw_s,rill_count,rill_slope_deg,axis_distance_upper_mm,best_guess_point_x,best_guess_point_y,best_guess_point_z,best_guess_direction_x,best_guess_direction_y,best_guess_direction_z,best_guess_sense_known";
 
     /// This record as a row of `report.csv` (RFC 4180 quoting).
     pub fn csv_row(&self) -> String {
@@ -423,6 +462,10 @@ impl SherdRecord {
         let reason = self.error.clone().or_else(|| self.reason.clone()).unwrap_or_default();
         let status = if self.error.is_some() { format!("error: {reason}") } else { self.status.clone() };
         let t = &self.timings;
+        let guess = self.best_guess.as_ref();
+        let coordinate = |v: Option<f64>| v.map(|v| format!("{v:.6}")).unwrap_or_default();
+        let point = |i: usize| coordinate(guess.map(|g| g.axis.point[i]));
+        let direction = |i: usize| coordinate(guess.map(|g| g.axis.direction[i]));
         [
             csv_quote(&self.file),
             csv_quote(&status),
@@ -451,9 +494,21 @@ impl SherdRecord {
             self.rills.map(|r| r.count.to_string()).unwrap_or_default(),
             number(self.rills.map(|r| r.slope_deg)),
             high(self.axis_distance_interval_mm),
+            point(0),
+            point(1),
+            point(2),
+            direction(0),
+            direction(1),
+            direction(2),
+            guess.map(|g| g.sense_known.to_string()).unwrap_or_default(),
         ]
         .join(",")
     }
+}
+
+/// `axis` (in millimetres) in the scan's units.
+fn in_scan_units(axis: &Axis, millimetres_per_unit: f64) -> Axis {
+    Axis { point: Point::from(axis.point.coords / millimetres_per_unit), direction: axis.direction }
 }
 
 fn csv_quote(field: &str) -> String {

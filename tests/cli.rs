@@ -123,10 +123,12 @@ fn orient_json_on_the_real_scan_a011_keeps_the_contract() {
         "ok" | "axis_uncertain" | "sense_uncertain" => {
             let direction = vector(&json["axis"]["direction"]);
             assert!((direction.iter().map(|c| c * c).sum::<f64>() - 1.0).abs() < 1e-6, "{json:#}");
+            assert!(json["best_guess"].is_null(), "an answer is no best guess: {json:#}");
         }
         "needs_manual_orientation" => {
             assert!(json["axis"].is_null(), "no axis without an orientation: {json:#}");
             assert!(json["reason"].as_str().is_some_and(|r| !r.is_empty()), "the reason is given: {json:#}");
+            assert!(json["best_guess"]["axis"].is_object(), "the axis found anyway, as a best guess: {json:#}");
         }
         other => panic!("unexpected status {other}: {json:#}"),
     }
@@ -194,14 +196,70 @@ fn units_from_the_option_or_the_file_keep_the_axis_in_the_file_units_and_report_
     assert!(small, "--units mm was not applied: {overridden:#}");
 }
 
+/// A flat base piece is declined (exit code 0), with no axis but the axis its search
+/// found as a best guess, not trusted: a unit direction, the reason against it, the text
+/// output saying what it is and how to use it, and the file accepted by `draw --axis`
+/// once the best guess is saved alone. The batch report carries it too: the best guess's
+/// columns at the end of `report.csv`, filled for that row, and the object in
+/// `report.json`.
 #[test]
-fn a_flat_base_piece_is_reported_as_needing_manual_orientation_with_exit_code_zero() {
+fn a_flat_base_piece_is_reported_as_needing_manual_orientation_with_its_best_guess() {
     let dir = tempfile::tempdir().unwrap();
     let scans = synth(dir.path(), &["--seed", "5", "--hard-case", "flat-base", "--faces", "20000"]);
     let json = orient_json(&scans[0], &[]);
     assert_eq!(json["status"], "needs_manual_orientation", "{json:#}");
     assert!(json["reason"].as_str().is_some_and(|r| !r.is_empty()), "{json:#}");
     assert!(json["rim_radius_mm"].is_null());
+    assert!(json["axis"].is_null(), "the best guess is no answer: {json:#}");
+    let guess = &json["best_guess"];
+    let direction = vector(&guess["axis"]["direction"]);
+    assert!((direction.iter().map(|c| c * c).sum::<f64>() - 1.0).abs() < 1e-9, "{json:#}");
+    assert!(vector(&guess["axis"]["point"]).iter().all(|c| c.is_finite()), "{json:#}");
+    assert_eq!(guess["against"], json["reason"], "{json:#}");
+    assert!(guess["sense_known"].is_boolean(), "{json:#}");
+    // The synthetic piece's true axis: the guess's line is near it (a flat piece's normals
+    // give the direction, not the position).
+    let truth = vector(&truth_of(&scans[0])["axis"]["direction"]);
+    let line_angle = angle_deg(direction, truth).min(180.0 - angle_deg(direction, truth));
+    assert!(line_angle < 20.0, "the best guess is {line_angle:.1} degrees off the true axis line");
+
+    let text = sherd().arg("orient").arg(&scans[0]).output().unwrap();
+    assert!(text.status.success());
+    let text = String::from_utf8_lossy(&text.stdout);
+    assert!(text.contains("best guess (not trusted): axis through") && text.contains("--manual"), "{text}");
+
+    let orient_file = dir.path().join("declined.json");
+    fs::write(&orient_file, serde_json::to_vec(&json).unwrap()).unwrap();
+    let refused = sherd().arg("draw").arg(&scans[0]).arg("--axis").arg(&orient_file).arg("-o").arg(dir.path().join("x.svg")).output().unwrap();
+    assert!(!refused.status.success(), "a null axis is not drawn along");
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("best_guess"), "{}", String::from_utf8_lossy(&refused.stderr));
+    let guess_file = dir.path().join("guess.json");
+    fs::write(&guess_file, serde_json::to_vec(guess).unwrap()).unwrap();
+    let drawing = dir.path().join("guess.svg");
+    sherd().arg("draw").arg(&scans[0]).arg("--axis").arg(&guess_file).arg("-o").arg(&drawing).assert().success();
+    assert!(drawing.exists());
+
+    let output = dir.path().join("batch");
+    sherd().arg("batch").arg(&scans[0]).arg("-o").arg(&output).assert().success();
+    let report = fs::read_to_string(output.join("report.csv")).unwrap();
+    let header = split_csv(report.lines().next().unwrap());
+    let columns = ["best_guess_point_x", "best_guess_point_y", "best_guess_point_z", "best_guess_direction_x", "best_guess_direction_y", "best_guess_direction_z", "best_guess_sense_known"];
+    assert_eq!(header[header.len() - columns.len()..], columns, "new columns at the end: {header:?}");
+    let rows = csv_rows(&output.join("report.csv"));
+    assert_eq!(rows.len(), 1);
+    assert_eq!(rows[0].len(), header.len());
+    assert_eq!(rows[0][1], "needs_manual_orientation");
+    let column = |name: &str| rows[0][header.iter().position(|h| h == name).unwrap()].clone();
+    let from_csv = ["x", "y", "z"].map(|c| column(&format!("best_guess_direction_{c}")).parse::<f64>().unwrap());
+    assert!(angle_deg(from_csv, direction) < 0.01, "{from_csv:?} against {direction:?}");
+    for c in ["x", "y", "z"] {
+        assert!(column(&format!("best_guess_point_{c}")).parse::<f64>().is_ok_and(f64::is_finite), "{:?}", rows[0]);
+    }
+    assert_eq!(column("best_guess_sense_known"), guess["sense_known"].to_string());
+    let batch_json: Value = serde_json::from_slice(&fs::read(output.join("report.json")).unwrap()).unwrap();
+    let batch_guess = &batch_json[0]["best_guess"];
+    assert!(angle_deg(vector(&batch_guess["axis"]["direction"]), direction) < 1e-6, "{batch_guess:#}");
+    assert_eq!(batch_guess["against"], guess["against"]);
 }
 
 /// `--pareto-plot` writes the Pareto criterion's front as an SVG plot (one point per
@@ -384,8 +442,14 @@ fn batch_reports_every_sherd_keeps_going_past_a_broken_file_exits_1_and_resumes(
     let rows = csv_rows(&output.join("report.csv"));
     assert_eq!(rows.len(), scans.len() + 1, "one row per file");
     let header = split_csv(fs::read_to_string(output.join("report.csv")).unwrap().lines().next().unwrap());
-    assert_eq!(header[header.len() - 3..], ["rill_count", "rill_slope_deg", "axis_distance_upper_mm"], "{header:?}");
+    let rills = header.iter().position(|h| h == "rill_count").expect("a rill_count column");
+    assert_eq!(header[rills..rills + 3], ["rill_count", "rill_slope_deg", "axis_distance_upper_mm"], "{header:?}");
     assert!(rows.iter().all(|row| row.len() == header.len()), "every row has the header's columns");
+    // Only a declined sherd has a best guess: its columns are empty on every other row.
+    let guess = header.iter().position(|h| h == "best_guess_direction_z").expect("the best guess's columns");
+    for row in &rows {
+        assert_eq!(row[guess].is_empty(), row[1] != "needs_manual_orientation", "{row:?}");
+    }
     let broken = rows.iter().find(|r| r[0].ends_with("zz-broken.ply")).expect("the broken file has a row");
     assert!(broken[1].starts_with("error: "), "{broken:?}");
     assert!(broken[1].contains("zz-broken.ply"), "the reason names the file: {broken:?}");

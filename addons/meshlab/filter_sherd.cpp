@@ -117,13 +117,45 @@ LayerMesh layerMesh(MeshModel& model)
 	return LayerMesh{std::move(mesh), std::move(vertices), cm.Tr};
 }
 
-// A fragment sherd cannot orient: the filter fails with the library's reason and what to
-// do; `rills` (from rillPoints) names three points on its longest wheel rill, if any.
-MLException cannotOrient(const QString& reason, const QString& rills = QString())
+QString axisText(const SherdAxis& axis)
 {
+	return QString("point (%1, %2, %3) mm, direction (%4, %5, %6)")
+		.arg(axis.point[0], 0, 'f', 3).arg(axis.point[1], 0, 'f', 3).arg(axis.point[2], 0, 'f', 3)
+		.arg(axis.direction[0], 0, 'f', 5).arg(axis.direction[1], 0, 'f', 5).arg(axis.direction[2], 0, 'f', 5);
+}
+
+// A fragment sherd cannot orient: the filter fails with the library's reason and what to
+// do; `rills` (from rillPoints) names three points on its longest wheel rill, if any, and
+// `guess` the axis the library still found (its best guess, not trusted), if any.
+MLException cannotOrient(const QString& reason, const QString& rills = QString(),
+                         const std::optional<SherdAxis>& guess = std::nullopt)
+{
+	QString guessed = guess ? " Its best guess, not to be trusted for that reason: axis " + axisText(*guess) + "." : QString();
 	return MLException("Sherd: this fragment does not determine its axis (" + reason +
 	                   "). Orient it with Sherd: orient from three points picked on the rim or base" + rills +
-	                   ", then use the layer's z axis.");
+	                   ", then use the layer's z axis." + guessed);
+}
+
+// The axis an automatic orientation still gives when it declines (its best guess), in the
+// layer mesh's frame; none when it found no axis at all (its angle uncertainty infinite:
+// the axis given is then only a vertical through the centroid).
+std::optional<SherdAxis> bestGuess(const sherd::Orientation& found)
+{
+	if (found.report.angle_uncertainty_deg == std::numeric_limits<double>::infinity()) return std::nullopt;
+	return found.axis;
+}
+
+// The pipeline record's best_guess (`record_json`): the axis it still found for a
+// fragment it declined, in the layer mesh's frame; none when it found no axis.
+std::optional<SherdAxis> recordBestGuess(const std::string& record_json)
+{
+	QJsonObject axis = QJsonDocument::fromJson(QByteArray::fromStdString(record_json))
+	                       .object().value("best_guess").toObject().value("axis").toObject();
+	QJsonArray point = axis.value("point").toArray();
+	QJsonArray direction = axis.value("direction").toArray();
+	if (point.size() != 3 || direction.size() != 3) return std::nullopt;
+	return sherd::make_axis({point[0].toDouble(), point[1].toDouble(), point[2].toDouble()},
+	                        {direction[0].toDouble(), direction[1].toDouble(), direction[2].toDouble()});
 }
 
 // The three points the library suggests on the longest wheel rill of a fragment it cannot
@@ -163,7 +195,8 @@ SherdAxis layerAxis(const LayerMesh& layer, int source)
 		throw MLException(QString("Sherd: axis source %1 is not one of 0 (automatic), 1 (layer frame).").arg(source));
 	sherd::Analysis analysis = sherd::analyse(layer.mesh);
 	if (analysis.status == SHERD_STATUS_NEEDS_MANUAL_ORIENTATION)
-		throw cannotOrient(QString::fromStdString(analysis.reason), rillPoints(layer, recordRillPoints(analysis.record_json)));
+		throw cannotOrient(QString::fromStdString(analysis.reason), rillPoints(layer, recordRillPoints(analysis.record_json)),
+		                   recordBestGuess(analysis.record_json));
 	// The axis line is good, only which way is up is a guess: the measurements hold, a
 	// drawing or the layer's frame may be upside down.
 	if (analysis.status == SHERD_STATUS_SENSE_UNCERTAIN)
@@ -220,13 +253,6 @@ QString matrixText(const Matrix44m& m)
 	return text;
 }
 
-QString axisText(const SherdAxis& axis)
-{
-	return QString("point (%1, %2, %3) mm, direction (%4, %5, %6)")
-		.arg(axis.point[0], 0, 'f', 3).arg(axis.point[1], 0, 'f', 3).arg(axis.point[2], 0, 'f', 3)
-		.arg(axis.direction[0], 0, 'f', 5).arg(axis.direction[1], 0, 'f', 5).arg(axis.direction[2], 0, 'f', 5);
-}
-
 // The section angle of the profile filters: NaN asks sherd for the most informative one.
 double sectionAngleRad(const RichParameterList& parameters)
 {
@@ -266,7 +292,8 @@ std::map<std::string, QVariant> orient(MeshModel& model, const RichParameterList
 		if (!found.oriented)
 			throw cannotOrient(QString::fromStdString(found.reason),
 			                   method == ORIENT_AUTOMATIC ? rillPoints(layer, sherd::points_on_longest_rill(layer.mesh, found.axis))
-			                                              : QString());
+			                                              : QString(),
+			                   method == ORIENT_AUTOMATIC ? bestGuess(found) : std::nullopt);
 		axis = found.axis;
 		how = method == ORIENT_AUTOMATIC ? "automatic orientation" : "three points";
 		if (refine) {
@@ -322,7 +349,7 @@ std::map<std::string, QVariant> refine(MeshModel& model, const RichParameterList
 	if (parameters.getEnum("start_axis") == AXIS_AUTOMATIC) {
 		sherd::Orientation found = sherd::orient_automatic(layer.mesh);
 		if (!found.oriented)
-			throw cannotOrient(QString::fromStdString(found.reason));
+			throw cannotOrient(QString::fromStdString(found.reason), QString(), bestGuess(found));
 		start = found.axis;
 	}
 	else if (parameters.getEnum("start_axis") != AXIS_LAYER_FRAME) {

@@ -503,8 +503,9 @@ inline Regularity regularity(const Mesh& mesh, const SherdAxis& axis,
 
 /// What the whole pipeline found (`sherd orient --json`'s record): `status` is
 /// SHERD_STATUS_OK, SHERD_STATUS_SENSE_UNCERTAIN (axis set, its sense a guess, `reason`
-/// says why) or SHERD_STATUS_NEEDS_MANUAL_ORIENTATION (then `axis` is unset and `reason`
-/// says why); errors throw.
+/// says why) or SHERD_STATUS_NEEDS_MANUAL_ORIENTATION (then `axis` is unset, `reason`
+/// says why, and `record_json`'s "best_guess" holds the axis the orientation still found,
+/// not to be trusted, when it found one); errors throw.
 struct Analysis {
     SherdStatus status;
     SherdAxis axis;

@@ -124,7 +124,9 @@ pub struct SherdOrientReport {
     /// True when the data determine the axis and its sense; false with
     /// `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` and `SHERD_STATUS_SENSE_UNCERTAIN`.
     pub oriented: bool,
-    /// Calibrated uncertainty of the direction, degrees (NaN for a manual axis).
+    /// Calibrated uncertainty of the direction, degrees (NaN where it is not estimated, as
+    /// for a manual axis); infinite when the automatic orientation found no axis at all
+    /// (the axis written is then no guess: see `sherd_orient_automatic`).
     pub angle_uncertainty_deg: f64,
     /// Calibrated uncertainty of the axis position near the sherd, millimetres (NaN for a
     /// manual axis).
@@ -188,7 +190,10 @@ fn check_orientation_outputs(out_axis: *mut SherdAxis, out_report: *mut SherdOri
 /// Returns `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` when the fragment does not determine
 /// its axis (a flat base piece, a near-spherical piece, one too small): the axis is
 /// still written, as a best guess not to be trusted, and the message gives the reason;
-/// ask the user for three points (`sherd_orient_from_three_points`).
+/// ask the user for three points (`sherd_orient_from_three_points`). When the fragment
+/// gave no axis at all (too few points on a surface of revolution), the report's
+/// `angle_uncertainty_deg` is infinite and the axis written is only a vertical through
+/// the centroid, no guess.
 /// Returns `SHERD_STATUS_SENSE_UNCERTAIN` when the axis line is determined but not which
 /// way is up (base to rim): the axis is written, its sense a guess.
 ///

@@ -40,10 +40,10 @@ unsafe fn pipeline_options(
     Ok(options)
 }
 
-/// Hands the pipeline's outcome to the host: the record as JSON (a failed one on error),
-/// the axis (scan frame and units) when the sherd is oriented (also when only its sense
-/// is uncertain), and the status: the error's own, NEEDS_MANUAL_ORIENTATION or
-/// SENSE_UNCERTAIN with the reason, or OK.
+/// Hands the pipeline's outcome to the host: the record as JSON (a failed one on error;
+/// a declined sherd's with its `best_guess`), the axis (scan frame and units) when the
+/// sherd is oriented (also when only its sense is uncertain), and the status: the
+/// error's own, NEEDS_MANUAL_ORIENTATION or SENSE_UNCERTAIN with the reason, or OK.
 unsafe fn hand_out_analysis(
     file: String,
     analysis: crate::Result<Analysis>,
@@ -75,8 +75,12 @@ unsafe fn hand_out_analysis(
 /// scan's frame and units. `refine_options` may be NULL (criterion AUTO);
 /// `millimetres_per_unit` is 1 for scans in millimetres.
 ///
-/// Returns `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` (record written, no axis) when the
-/// sherd does not determine its axis; `SHERD_STATUS_SENSE_UNCERTAIN` (record and axis
+/// Returns `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` (record written, `out_axis` not) when
+/// the sherd does not determine its axis: the record's `"axis"` is null and its
+/// `"best_guess"` holds the axis the orientation still found, not to be trusted
+/// (`{"axis": {"point": [x, y, z], "direction": [dx, dy, dz]}, "against": reason,
+/// "sense_known": bool}`, scan frame and units, base to rim as the sense cues read it;
+/// null when it found none, too few points); `SHERD_STATUS_SENSE_UNCERTAIN` (record and axis
 /// written, refined and measured) when it determines the axis line but not which way is up;
 /// `SHERD_STATUS_OK` with the record's `"status"` `"axis_uncertain"` (and its `"reason"`)
 /// when the axis is found but not pinned down: check it before using its figures. When

@@ -404,6 +404,36 @@ def test_base_sherd(vendored, operators):
     assert "Rim diameter" not in texts
 
 
+def test_declined_sherd(vendored, operators):
+    """A flat base piece Orient declines: the warning gives the reason and keeps the
+    library's best guess on the object; Use best guess places the object along it (axis
+    on Z), its axis flagged as a best guess, and is refused where there is none."""
+    clear_scene()
+    for seed in range(1, 9):
+        mesh, _, _ = vendored.synthetic_sherd(seed, "flat_base", target_faces=6000)
+        guess = vendored.orient_automatic(mesh).best_guess
+        if guess is not None:
+            break
+    else:
+        raise AssertionError("no flat base piece was declined with a best guess")
+    obj = add_mesh_object("flat", mesh.positions, mesh.triangles)
+    assert bpy.ops.sherd.orient_automatic() == {'CANCELLED'}
+    kinds, message = operators.REPORTS[-1]
+    assert 'WARNING' in kinds and "needs manual orientation" in message and "best guess" in message, message
+    assert guess.against in message, message
+    np.testing.assert_allclose(obj[operators.BEST_GUESS_DIRECTION], guess.axis.direction, atol=1e-9)
+    assert obj[operators.BEST_GUESS_AGAINST] == guess.against
+    assert operators.AXIS_POINT not in obj, "a declined sherd gets no axis of its own"
+    assert bpy.ops.sherd.use_best_guess() == {'FINISHED'}, operators.REPORTS[-1:]
+    kinds, message = operators.REPORTS[-1]
+    assert 'WARNING' in kinds and "best guess" in message and "check it" in message, message
+    assert obj[operators.AXIS_SOURCE] == operators.BEST_GUESS_SOURCE
+    assert operators.BEST_GUESS_POINT not in obj, "the guess is used up"
+    # The object now stands along the guess: its stored (moved) axis is Z.
+    assert angle_to_z_deg(np.array(obj[operators.AXIS_DIRECTION])) < 1e-4
+    expect_cancelled(operators, bpy.ops.sherd.use_best_guess, "no best guess")
+
+
 def test_bad_input(vendored, operators):
     clear_scene()
     empty_object = bpy.data.objects.new("not a mesh", None)
@@ -459,7 +489,7 @@ def test_real_scan(vendored, operators):
 def main():
     vendored, operators = install_addon()
     failed = []
-    for test in (test_bad_input, test_synthetic_sherd, test_base_sherd, test_real_scan):
+    for test in (test_bad_input, test_synthetic_sherd, test_base_sherd, test_declined_sherd, test_real_scan):
         print(f"{test.__name__}")
         try:
             test(vendored, operators)

@@ -237,7 +237,8 @@ static void test_pipeline_in_one_call(const SherdMesh *mesh, const SherdAxis *tr
 }
 
 /* A flat base piece the orientation refuses: NEEDS_MANUAL_ORIENTATION with the record
- * saying so and its reason; no axis written. */
+ * saying so and its reason, and the axis found anyway as the record's best guess; no
+ * axis written. */
 static void test_pipeline_needs_manual_orientation(void) {
     uint64_t seed;
     for (seed = 1; seed <= 8; ++seed) {
@@ -253,6 +254,8 @@ static void test_pipeline_needs_manual_orientation(void) {
         if (status == SHERD_STATUS_NEEDS_MANUAL_ORIENTATION) {
             CHECK(strstr(buffer_text(json), "\"status\":\"needs_manual_orientation\"") != NULL);
             CHECK(strstr(buffer_text(json), "\"reason\":\"") != NULL);
+            CHECK(strstr(buffer_text(json), "\"axis\":null") != NULL);
+            CHECK(strstr(buffer_text(json), "\"best_guess\":{\"axis\":{\"point\":[") != NULL);
             CHECK(axis.direction[0] == 0.0 && axis.direction[1] == 0.0 && axis.direction[2] == 0.0);
             printf("  flat base (seed %u): %s\n", (unsigned)seed, sherd_last_error_message());
             sherd_buffer_free(json);

@@ -303,6 +303,14 @@ def test_a_fragment_without_an_axis_is_a_filter_error(tmp_path):
         ms.apply_filter("sherd_orient")
     assert "does not determine its axis" in str(error.value)
     np.testing.assert_array_equal(ms.current_mesh().trasform_matrix(), np.eye(4))
+    # The message gives the reason and the axis found anyway, as the CLI's best guess.
+    record, _ = cli_record(scan)
+    assert record["reason"] in str(error.value)
+    direction = record["best_guess"]["axis"]["direction"]
+    assert "best guess, not to be trusted" in str(error.value), str(error.value)
+    shown = re.search(r"best guess.*direction \((-?[\d.]+), (-?[\d.]+), (-?[\d.]+)\)", str(error.value))
+    assert shown, str(error.value)
+    np.testing.assert_allclose([float(v) for v in shown.groups()], direction, atol=2e-5)
 
 
 @pytest.fixture(scope="session")

@@ -91,6 +91,13 @@ def test_process_file_gives_the_cli_record(scan, cli_record):
         for key in ("count", "slope_deg", "slope_spread_deg", "longest_arc_mm"):
             assert_close(record["rills"][key], cli_record["rills"][key], f"rills {key}")
     assert_close(record["manual_points_on_rill"], cli_record["manual_points_on_rill"], "manual points on the rill")
+    # A declined sherd's best guess, not trusted: the same as the CLI's.
+    guess, cli_guess = analysis.best_guess, cli_record["best_guess"]
+    assert (guess is None) == (cli_guess is None)
+    if guess is not None:
+        assert_close(guess.axis.point, cli_guess["axis"]["point"], "best guess point")
+        assert_close(guess.axis.direction, cli_guess["axis"]["direction"], "best guess direction")
+        assert (guess.against, guess.sense_known) == (cli_guess["against"], cli_guess["sense_known"])
     if analysis.oriented:
         assert_close(analysis.axis.point, cli_record["axis"]["point"], "axis point")
         assert_close(analysis.axis.direction, cli_record["axis"]["direction"], "axis direction")

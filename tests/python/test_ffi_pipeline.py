@@ -63,8 +63,13 @@ def test_a_flat_base_piece_needs_manual_orientation():
         assert np.linalg.norm(orientation.axis.direction) == pytest.approx(1.0)
         if not orientation.oriented:
             assert orientation.reason.startswith("sherd_orient_automatic: ") and len(orientation.reason) > 40
+            # The declined axis is its best guess, flagged by the reason against it.
+            guess = orientation.best_guess
+            assert guess is not None and guess.sense_known is None
+            assert orientation.reason == f"sherd_orient_automatic: {guess.against}"
+            np.testing.assert_array_equal(guess.axis.direction, orientation.axis.direction)
             return
-        assert orientation.reason == ""
+        assert orientation.reason == "" and orientation.best_guess is None
     pytest.fail("no flat base piece was refused")
 
 

@@ -124,5 +124,16 @@ def test_a_flat_base_piece_needs_manual_orientation_in_one_call():
         if not analysis.oriented:
             assert analysis.axis is None and analysis.reason
             assert analysis.record["status"] == "needs_manual_orientation"
+            # The axis the orientation still found, not trusted: the record's best guess.
+            guess = analysis.best_guess
+            assert guess is not None and guess.against == analysis.record["reason"]
+            assert np.linalg.norm(guess.axis.direction) == pytest.approx(1.0)
+            assert guess.axis.record() == analysis.record["best_guess"]["axis"]
+            assert isinstance(guess.sense_known, bool)
+            # It is the automatic orientation's declined axis.
+            declined = sherd.orient_automatic(mesh).best_guess
+            np.testing.assert_allclose(declined.axis.direction, guess.axis.direction, atol=1e-12)
+            assert declined.against == guess.against
+            assert analysis.reason.endswith(guess.against)
             return
     pytest.fail("no flat base piece was refused")

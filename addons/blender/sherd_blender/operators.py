@@ -17,6 +17,13 @@ from .library import LibraryMissingError, is_sherd_error, sherd
 AXIS_POINT = "sherd_axis_point"
 AXIS_DIRECTION = "sherd_axis_direction"
 AXIS_SOURCE = "sherd_axis_source"
+#: A declined sherd's best guess (the axis the automatic orientation found but does not
+#: trust, world coordinates) and what speaks against it.
+BEST_GUESS_POINT = "sherd_best_guess_point"
+BEST_GUESS_DIRECTION = "sherd_best_guess_direction"
+BEST_GUESS_AGAINST = "sherd_best_guess_against"
+#: The axis source of an object placed along its best guess.
+BEST_GUESS_SOURCE = "best guess (not trusted: check it)"
 PARETO_PLOT = "sherd_pareto_plot_svg"
 MEASUREMENT_KEYS = {
     "rim_diameter_mm": "sherd_rim_diameter_mm",
@@ -181,11 +188,30 @@ class SherdOperator:
         return {'CANCELLED'}
 
 
-def _finish_orientation(operator, obj, orientation, source):
+def keep_best_guess(obj, guess):
+    """Stores a declined orientation's best guess on the object (``sherd_best_guess_*``),
+    or removes an earlier one when there is none; returns what to tell the user."""
+    if guess is None:
+        forget_best_guess(obj)
+        return ""
+    obj[BEST_GUESS_POINT] = [float(v) for v in guess.axis.point]
+    obj[BEST_GUESS_DIRECTION] = [float(v) for v in guess.axis.direction]
+    obj[BEST_GUESS_AGAINST] = guess.against
+    return ". Its best guess, not trusted, is kept: Use best guess places the object along it"
+
+
+def forget_best_guess(obj):
+    for key in (BEST_GUESS_POINT, BEST_GUESS_DIRECTION, BEST_GUESS_AGAINST):
+        if key in obj:
+            del obj[key]
+
+
+def _finish_orientation(operator, obj, orientation, source, offer=""):
     if not orientation.oriented:
         what = "sense uncertain (check which way is up)" if orientation.sense_uncertain else "needs manual orientation"
-        operator.notify({'WARNING'}, f"{what}: {orientation.reason}")
+        operator.notify({'WARNING'}, f"{what}: {orientation.reason}{offer}")
         return {'CANCELLED'}
+    forget_best_guess(obj)
     store_axis(obj, orientation.axis, source)
     obj["sherd_angle_uncertainty_deg"] = float(orientation.angle_uncertainty_deg)
     uncertainty = orientation.angle_uncertainty_deg
@@ -206,11 +232,13 @@ class SHERD_OT_orient_automatic(SherdOperator, bpy.types.Operator):
             mesh, _ = library_mesh(obj)
             update(1)
             orientation = sherd().orient_automatic(mesh)
+        # A declined sherd's axis is kept as its best guess, for Use best guess.
+        offer = keep_best_guess(obj, orientation.best_guess)
         if not orientation.oriented and not orientation.sense_uncertain and _select_rill_points(obj, mesh, orientation.axis):
             self.notify({'WARNING'}, f"needs manual orientation: {orientation.reason}. Three vertices on its "
-                        "longest wheel rill are now selected: check them in Edit Mode, then Orient from 3 vertices")
+                        f"longest wheel rill are now selected: check them in Edit Mode, then Orient from 3 vertices{offer}")
             return {'CANCELLED'}
-        return _finish_orientation(self, obj, orientation, "automatic")
+        return _finish_orientation(self, obj, orientation, "automatic", offer)
 
 
 def _select_rill_points(obj, mesh, declined_axis):
@@ -353,13 +381,42 @@ class SHERD_OT_apply_orientation(SherdOperator, bpy.types.Operator):
 
     def run(self, context):
         obj = active_mesh_object(context)
-        axis = stored_axis(obj)
-        mesh, _ = library_mesh(obj)
-        transform = mesh.oriented_transform(axis)
-        obj.matrix_world = Matrix(transform.tolist()) @ obj.matrix_world
-        rotation, translation = transform[:3, :3], transform[:3, 3]
-        moved = sherd().Axis(rotation @ axis.point + translation, rotation @ axis.direction)
-        store_axis(obj, moved, obj.get(AXIS_SOURCE, "unknown"))
+        apply_orientation(obj, stored_axis(obj))
+        return {'FINISHED'}
+
+
+def apply_orientation(obj, axis):
+    """Moves ``obj`` so that ``axis`` (world coordinates) is on Z, rim up, and stores the
+    moved axis with the object's axis source."""
+    mesh, _ = library_mesh(obj)
+    transform = mesh.oriented_transform(axis)
+    obj.matrix_world = Matrix(transform.tolist()) @ obj.matrix_world
+    rotation, translation = transform[:3, :3], transform[:3, 3]
+    moved = sherd().Axis(rotation @ axis.point + translation, rotation @ axis.direction)
+    store_axis(obj, moved, obj.get(AXIS_SOURCE, "unknown"))
+
+
+class SHERD_OT_use_best_guess(SherdOperator, bpy.types.Operator):
+    """Place the object along the best guess Orient kept for a sherd it declined (axis on
+    Z, rim up as the guess points): not trusted, check it; three vertices orient the
+    sherd properly"""
+
+    bl_idname = "sherd.use_best_guess"
+    bl_label = "Use best guess"
+
+    def run(self, context):
+        obj = active_mesh_object(context)
+        if BEST_GUESS_POINT not in obj or BEST_GUESS_DIRECTION not in obj:
+            raise InputError(f"{obj.name!r} has no best guess: Orient keeps one when it declines a sherd")
+        guess = sherd().Axis(list(obj[BEST_GUESS_POINT]), list(obj[BEST_GUESS_DIRECTION]))
+        against = obj.get(BEST_GUESS_AGAINST, "")
+        # The guess becomes the stored axis, flagged as one by its source, and is used up:
+        # after the move its world coordinates no longer hold.
+        store_axis(obj, guess, BEST_GUESS_SOURCE)
+        forget_best_guess(obj)
+        apply_orientation(obj, guess)
+        self.notify({'WARNING'}, f"placed along the best guess, not trusted (against it: {against}): check it, "
+                    "turn it over if the rim is down, or orient from 3 vertices")
         return {'FINISHED'}
 
 
@@ -551,4 +608,4 @@ class SHERD_OT_regularity(SherdOperator, bpy.types.Operator):
 
 
 classes = (SHERD_OT_reconstruct, SHERD_OT_regularity, SHERD_OT_draw, SHERD_OT_orient_automatic, SHERD_OT_orient_three_points, SHERD_OT_refine, SHERD_OT_measure,
-           SHERD_OT_apply_orientation, SHERD_OT_add_axis_empty, SHERD_OT_save_pareto_plot)
+           SHERD_OT_apply_orientation, SHERD_OT_use_best_guess, SHERD_OT_add_axis_empty, SHERD_OT_save_pareto_plot)

@@ -72,6 +72,9 @@ class SHERD_PT_panel(bpy.types.Panel):
         column.label(text="Orientation")
         column.operator(operators.SHERD_OT_orient_automatic.bl_idname)
         column.operator(operators.SHERD_OT_orient_three_points.bl_idname)
+        if operators.BEST_GUESS_POINT in obj:
+            # A declined sherd: its best guess, offered as what it is.
+            column.operator(operators.SHERD_OT_use_best_guess.bl_idname, icon='ERROR')
 
         # The sidebar is narrow: one value per row, choices without their labels in a row.
         box = layout.box()

@@ -27,7 +27,7 @@ from .draw import Drawing
 from .export import (export_oriented_ply, export_profile_csv, export_reconstruction_ply, most_informative_angle,
                      profile_csv, profile_section)
 from .mesh import Attribute, Mesh
-from .pipeline import (Analysis, Measurements, Orientation, Refinement, analyse, measure, orient_automatic,
+from .pipeline import (Analysis, BestGuess, Measurements, Orientation, Refinement, analyse, measure, orient_automatic,
                        orient_from_three_points, points_on_longest_rill, process_file, refine, synthetic_sherd)
 from .reconstruct import Regularity, reconstruct, regularity
 
@@ -39,7 +39,7 @@ if lib.sherd_abi_version() != ABI_VERSION:
 __version__ = lib.sherd_version().decode()
 
 __all__ = [
-    "Analysis", "analyse", "process_file", "Regularity", "reconstruct", "regularity",
+    "Analysis", "analyse", "BestGuess", "process_file", "Regularity", "reconstruct", "regularity",
     "Attribute", "Axis", "Drawing", "BufferTooSmallError", "DegenerateGeometryError", "InvalidArgumentError", "Mesh",
     "NeedsManualOrientationError", "SenseUncertainError", "NotAvailableError", "NotConvergedError", "NullPointerError", "PanicError",
     "ParseError", "SherdError", "SherdIOError", "Status", "export_oriented_ply", "export_profile_csv",

@@ -2,6 +2,7 @@
 and the whole pipeline in one call (the record ``sherd orient --json`` prints)."""
 
 import ctypes
+import math
 import os
 from dataclasses import dataclass, field
 
@@ -33,6 +34,21 @@ def synthetic_sherd(seed, kind="random", target_faces=0, noise_mm=0.02):
 
 
 @dataclass
+class BestGuess:
+    """The axis the automatic orientation still found for a sherd it declined (needs
+    manual orientation): not an answer, but where to start looking. ``axis`` is in the
+    scan's frame and units, pointed base to rim as the sense cues read it under it (negate
+    its direction to flip it); ``against`` says what speaks against it (why the sherd was
+    declined); ``sense_known`` is True when the cues say which end is the rim as firmly as
+    an oriented sherd's must, False when which way is up is a guess too, None where the
+    call does not judge it (:attr:`Orientation.best_guess`)."""
+
+    axis: Axis
+    against: str
+    sense_known: object = None
+
+
+@dataclass
 class Orientation:
     """The result of an orientation. ``oriented`` is False when the data do not determine
     the axis: ``axis`` is then only a guess and ``reason`` says why (ask for three points).
@@ -47,6 +63,17 @@ class Orientation:
     kept_vertex_count: int
     report: dict = field(default_factory=dict)
     sense_uncertain: bool = False
+
+    @property
+    def best_guess(self):
+        """A declined orientation's axis as a :class:`BestGuess` (``against`` its reason
+        without the function's name, ``sense_known`` None); None when the axis is an answer (``oriented`` or
+        ``sense_uncertain``) and when no axis was found at all (too few points:
+        ``angle_uncertainty_deg`` is infinite and ``axis`` only a vertical through the
+        centroid)."""
+        if self.oriented or self.sense_uncertain or self.angle_uncertainty_deg == math.inf:
+            return None
+        return BestGuess(self.axis, self.reason.removeprefix("sherd_orient_automatic: "))
 
 
 def _orientation(status, axis, summary, report):
@@ -290,7 +317,9 @@ class Analysis:
     status ``sense_uncertain``) and the axis is given, its line found, its sense (base to
     rim) a guess. ``axis_uncertain`` is True (record status ``axis_uncertain``, its
     ``reason`` saying why) when the axis is found but not pinned down: ``oriented`` stays
-    True, and the axis wants a look before its figures are used."""
+    True, and the axis wants a look before its figures are used. A sherd that needs
+    manual orientation has no ``axis``; :attr:`best_guess` gives the one its orientation
+    still found, not to be trusted."""
 
     axis: Axis
     oriented: bool
@@ -301,6 +330,17 @@ class Analysis:
     @property
     def axis_uncertain(self):
         return self.record.get("status") == "axis_uncertain"
+
+    @property
+    def best_guess(self):
+        """For a sherd that needs manual orientation (``axis`` None): the record's
+        ``best_guess``, the axis the orientation still found, as a :class:`BestGuess`
+        (scan frame and units); None for every other status and when it found no axis."""
+        guess = self.record.get("best_guess")
+        if not guess:
+            return None
+        return BestGuess(Axis(guess["axis"]["point"], guess["axis"]["direction"]), guess["against"],
+                         bool(guess["sense_known"]))
 
 
 def _analysis(call, refine_options, millimetres_per_unit):

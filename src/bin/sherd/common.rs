@@ -251,9 +251,14 @@ pub fn read_axis(path: &Path, millimetres_per_unit: f64) -> Result<Axis, String>
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let value: serde_json::Value =
         serde_json::from_str(&text).map_err(|e| format!("{}: not JSON: {e}", path.display()))?;
-    let axis_value = value.get("axis").cloned().unwrap_or(value);
+    let axis_value = value.get("axis").cloned().unwrap_or_else(|| value.clone());
     if axis_value.is_null() {
-        return Err(format!("{}: the axis is null (was the sherd oriented?)", path.display()));
+        let hint = if value.get("best_guess").is_some_and(|guess| !guess.is_null()) {
+            "; to use its best guess (not trusted), save the \"best_guess\" object alone and give that"
+        } else {
+            ""
+        };
+        return Err(format!("{}: the axis is null (was the sherd oriented?){hint}", path.display()));
     }
     let record: AxisRecord = serde_json::from_value(axis_value)
         .map_err(|e| format!("{}: no axis {{\"point\": [x,y,z], \"direction\": [dx,dy,dz]}}: {e}", path.display()))?;
@@ -349,6 +354,22 @@ pub fn describe(record: &sherd::pipeline::SherdRecord) -> String {
     if let Some(points) = &record.manual_points_on_rill {
         let picks: Vec<String> = points.iter().map(|[x, y, z]| format!("{x:.3},{y:.3},{z:.3}")).collect();
         let _ = writeln!(text, "  three points on its longest wheel rill, for --manual: \"{}\"", picks.join(";"));
+    }
+    if let Some(guess) = &record.best_guess {
+        let [x, y, z] = guess.axis.point;
+        let [dx, dy, dz] = guess.axis.direction;
+        let sense = if guess.sense_known { "base to rim" } else { "which way is up a guess too" };
+        // The reason printed above is what speaks against the guess: said once.
+        let against = if record.reason.as_ref() == Some(&guess.against) { "the reason above" } else { &guess.against };
+        let _ = writeln!(
+            text,
+            "  best guess (not trusted): axis through ({x:.3}, {y:.3}, {z:.3}) along ({dx:.5}, {dy:.5}, {dz:.5}), {sense}; against it: {against}"
+        );
+        let _ = writeln!(
+            text,
+            "  to orient it, give three points on one horizontal feature (rim, rill, base edge) with --manual; \
+             to use the guess as it is (not refined), save the \"best_guess\" object of --json and give it to draw or export with --axis"
+        );
     }
     if let Some(drawing) = &record.drawing {
         let _ = writeln!(text, "  drawing: {drawing}");

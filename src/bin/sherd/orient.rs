@@ -18,14 +18,15 @@ use crate::common::{AnalysisArgs, RefineChoice};
     after_help = "Examples:\n  sherd orient A011.ply\n  sherd orient A011.ply --json > A011.axis.json\n  sherd orient A011.ply --refine tangent --surface outer\n  sherd orient body.ply --manual \"10,2,40;-31,5,38;4,-28,41\"   # three points on a rill\n\n\
 The axis is given in the scan's own frame and units, pointing from base to rim.\n\
 A sherd whose shape does not determine an axis (flat, near spherical, too small) is\n\
-reported as needs_manual_orientation with the reason (and, where wheel rills are\n\
-traced on it, three points on the longest for --manual); one whose axis line is found\n\
-but not which way is up (no level rim, no floor, a wall that hardly flares) as\n\
-sense_uncertain, still refined and measured; one whose axis is found but not pinned\n\
-down (the 95% interval of its direction or of its position is wide) as\n\
-axis_uncertain, with the reason: check it before using its figures. The exit code is 0\n\
-for all three. The rills'\n\
-slope under the axis (0 when it puts them horizontal) is printed when any are traced."
+reported as needs_manual_orientation with the reason, the axis its search found as a\n\
+best guess not to be trusted (\"best_guess\" in the JSON: --axis of draw and export\n\
+takes that object) and, where wheel rills are traced on it, three points on the\n\
+longest for --manual; one whose axis line is found but not which way is up (no level\n\
+rim, no floor, a wall that hardly flares) as sense_uncertain, still refined and\n\
+measured; one whose axis is found but not pinned down (the 95% interval of its\n\
+direction or of its position is wide) as axis_uncertain, with the reason: check it\n\
+before using its figures. The exit code is 0 for all three. The rills' slope under\n\
+the axis (0 when it puts them horizontal) is printed when any are traced."
 )]
 pub struct OrientArgs {
     /// The scan: .ply, .obj, .stl, .xyz or .pts.
