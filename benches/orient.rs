@@ -1,9 +1,11 @@
 //! Speed of the automatic pre-orientation on a 10k-vertex synthetic sherd (the size the
-//! paper orients on) and of its steps.
+//! paper orients on) and of its steps. The goals are for one core: run with
+//! `RAYON_NUM_THREADS=1 cargo bench --bench orient`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use sherd::orient::line_complex::{fit_complex, sample_hypotheses, CenteredLines, SamplerOptions};
+use sherd::orient::line_complex::{fit_complex, CenteredLines};
 use sherd::orient::normal_lines::NormalLines;
+use sherd::orient::revolution_search::{search, SearchOptions};
 use sherd::orient::{orient_automatic, OrientOptions};
 use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
 
@@ -18,15 +20,17 @@ fn orientation(c: &mut Criterion) {
     group.bench_function(format!("orient_automatic {} vertices", mesh.vertex_count()), |b| {
         b.iter(|| orient_automatic(mesh, &options).unwrap())
     });
+    let lines = NormalLines::from_mesh(mesh).unwrap();
+    group.bench_function(format!("whole-sphere search {} lines", lines.len()), |b| {
+        b.iter(|| search(&lines, &SearchOptions::default()).unwrap())
+    });
     group.bench_function(format!("bvh build {} faces", mesh.face_count()), |b| {
         b.iter(|| sherd::mesh::spatial::Bvh::new(mesh))
     });
-    let lines = NormalLines::from_mesh(mesh).unwrap();
     let centered = CenteredLines::new(&lines);
     group.bench_function(format!("line complex closed form {} lines", lines.len()), |b| {
         b.iter(|| fit_complex(&centered, None, None).unwrap())
     });
-    group.bench_function("sampler 300 hypotheses", |b| b.iter(|| sample_hypotheses(&centered, &SamplerOptions::default())));
     group.finish();
 }
 

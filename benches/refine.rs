@@ -1,14 +1,13 @@
 //! Pre-orientation + refinement of a ~10k-vertex synthetic rim sherd and of a body sherd
-//! (the goal: under 200 ms; the rim is levelled by the tangent plane, the body
-//! refined by the circles criterion), and each criterion alone from a start 3 degrees
-//! off.
+//! (the goal: under 500 ms on one core, `RAYON_NUM_THREADS=1 cargo bench --bench refine`;
+//! the rim is levelled by the tangent plane, the body refined by the circles criterion),
+//! and each criterion alone from a start 3 degrees off.
 
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
 use sherd::refine::accuracy::perturbed_axis;
 use sherd::orient::{orient_automatic, OrientOptions};
 use sherd::refine::{refine, Criterion, RefineOptions};
 use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
-
 
 fn bench(c: &mut Bench) {
     let sherd = synthetic_sherd(7, &SherdOptions { target_faces: 20_000, ..SherdOptions::for_part(SherdPart::Rim) });

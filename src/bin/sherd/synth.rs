@@ -62,8 +62,12 @@ pub struct SynthArgs {
     #[arg(long, value_delimiter = ',', num_args = 2, default_values_t = [15.0, 60.0])]
     pub sector_deg: Vec<f64>,
     /// No ovality, rim tilt or wobble: an ideal surface of revolution.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "deformation")]
     pub ideal: bool,
+    /// Size of the ovality, rim tilt and wobble: 1 is a carefully thrown vessel (rim
+    /// ovality up to 0.6%, rim tilt up to 0.3 degrees), 3 a roughly thrown one, 0 none.
+    #[arg(long, default_value_t = 1.0)]
+    pub deformation: f64,
     /// Leave the sherds in the vessel frame (axis on z, standing plane z = 0) instead of
     /// moving each by a random rigid motion.
     #[arg(long)]
@@ -118,7 +122,7 @@ pub fn run(arguments: &SynthArgs) -> Result<()> {
                     fragment_count: arguments.fragment_count(seed),
                     cell_size_mm: arguments.cell_mm,
                     noise_mm: arguments.noise_mm,
-                    deformation_scale: if arguments.ideal { 0.0 } else { 1.0 },
+                    deformation_scale: if arguments.ideal { 0.0 } else { arguments.deformation },
                     random_motion: !arguments.no_motion,
                     ..Default::default()
                 };
@@ -130,7 +134,7 @@ pub fn run(arguments: &SynthArgs) -> Result<()> {
                     part: arguments.part,
                     sector_deg: [arguments.sector_deg[0], arguments.sector_deg[1]],
                     shape: arguments.shape,
-                    deformation_scale: if arguments.ideal { 0.0 } else { 1.0 },
+                    deformation_scale: if arguments.ideal { 0.0 } else { arguments.deformation },
                     random_motion: !arguments.no_motion,
                     hard_case: arguments.hard_case,
                     ..Default::default()
@@ -161,6 +165,9 @@ fn check(arguments: &SynthArgs) -> Result<()> {
     }
     if !(arguments.noise_mm >= 0.0 && arguments.noise_mm.is_finite()) {
         return invalid(format!("--noise-mm {} must be a finite number >= 0", arguments.noise_mm));
+    }
+    if !(arguments.deformation >= 0.0 && arguments.deformation <= 10.0) {
+        return invalid(format!("--deformation {} must be a number from 0 to 10", arguments.deformation));
     }
     let [low, high] = [arguments.sector_deg[0], arguments.sector_deg[1]];
     if !(low > 0.0 && low <= high && high <= 360.0) {
