@@ -716,14 +716,15 @@ typedef struct {
    */
   bool oriented;
   /**
-   * Calibrated uncertainty of the direction, degrees (NaN where it is not estimated, as
-   * for a manual axis); infinite when the automatic orientation found no axis at all
-   * (the axis written is then no guess: see `sherd_orient_automatic`).
+   * How far the direction can turn, degrees, before the axis fits the sherd worse
+   * region by region (the width of its valley in units of the sherd's own noise and
+   * deformation; the pipeline's bootstrap gives the calibrated interval). NaN for a
+   * manual axis; infinite when the automatic orientation found no axis at all (the
+   * axis written is then no guess: see `sherd_orient_automatic`).
    */
   double angle_uncertainty_deg;
   /**
-   * Calibrated uncertainty of the axis position near the sherd, millimetres (NaN for a
-   * manual axis).
+   * The same for a move of the axis across itself near the sherd, millimetres.
    */
   double position_uncertainty_mm;
   /**

@@ -124,12 +124,13 @@ pub struct SherdOrientReport {
     /// True when the data determine the axis and its sense; false with
     /// `SHERD_STATUS_NEEDS_MANUAL_ORIENTATION` and `SHERD_STATUS_SENSE_UNCERTAIN`.
     pub oriented: bool,
-    /// Calibrated uncertainty of the direction, degrees (NaN where it is not estimated, as
-    /// for a manual axis); infinite when the automatic orientation found no axis at all
-    /// (the axis written is then no guess: see `sherd_orient_automatic`).
+    /// How far the direction can turn, degrees, before the axis fits the sherd worse
+    /// region by region (the width of its valley in units of the sherd's own noise and
+    /// deformation; the pipeline's bootstrap gives the calibrated interval). NaN for a
+    /// manual axis; infinite when the automatic orientation found no axis at all (the
+    /// axis written is then no guess: see `sherd_orient_automatic`).
     pub angle_uncertainty_deg: f64,
-    /// Calibrated uncertainty of the axis position near the sherd, millimetres (NaN for a
-    /// manual axis).
+    /// The same for a move of the axis across itself near the sherd, millimetres.
     pub position_uncertainty_mm: f64,
     /// Vertices of the working copy kept as the surface of revolution.
     pub kept_vertex_count: usize,

@@ -113,3 +113,62 @@ pub fn position_hold(samples: &RevolutionSamples, best: &Axis, shift_mm: f64, lo
         })
         .fold(f64::INFINITY, f64::min)
 }
+
+/// The t statistic at which a moved axis counts as fitting worse than the best one: one
+/// sided, about 5% with the 10-16 blocks of [`sample_blocks`].
+pub const UNCERTAINTY_T: f64 = 2.0;
+
+/// The moves, degrees or millimetres, at which [`valley_width`] compares a moved axis:
+/// doubling, so that a bound is found to within a factor of two in eight comparisons.
+const PROBE_STEPS: [f64; 9] = [0.125, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0];
+
+/// How far the best axis can turn (degrees) and move across itself (millimetres) before
+/// it fits the fragment worse, block by block, at [`UNCERTAINTY_T`]: the width of its
+/// valley in units the fragment's own noise and deformation set. The turn is probed in
+/// four directions with the position solved anew for each, the move in eight; the widest
+/// direction gives the bound, interpolated between the doubling steps. Where no probe up
+/// to 32 degrees (millimetres) separates, 64: the valley is at least that wide.
+pub fn valley_width(samples: &RevolutionSamples, blocks: &[Option<usize>], best: &Axis, loss_scale_mm: f64) -> (f64, f64) {
+    let d = best.direction.into_inner();
+    let (e1, e2) = super::halir::perpendicular_frame(&d);
+    let anchor = best.closest_point(&samples.centroid);
+    let bound = |separates: &dyn Fn(f64) -> f64| {
+        // The first step whose t reaches the limit, interpolated in the logarithm of the
+        // step between it and the one before.
+        let mut previous: Option<(f64, f64)> = None;
+        for &step in &PROBE_STEPS {
+            let t = separates(step);
+            if t >= UNCERTAINTY_T {
+                return match previous {
+                    Some((step_before, t_before)) if t > t_before => {
+                        let share = ((UNCERTAINTY_T - t_before) / (t - t_before)).clamp(0.0, 1.0);
+                        step_before * (step / step_before).powf(share)
+                    }
+                    _ => step,
+                };
+            }
+            previous = Some((step, if t.is_finite() { t } else { 0.0 }));
+        }
+        2.0 * PROBE_STEPS[PROBE_STEPS.len() - 1]
+    };
+    let turn_deg = (0..4)
+        .map(|k| {
+            let angle = k as f64 * std::f64::consts::FRAC_PI_2;
+            let across = e1 * angle.cos() + e2 * angle.sin();
+            bound(&|step_deg: f64| {
+                let turned = (d * step_deg.to_radians().cos() + across * step_deg.to_radians().sin()).normalize();
+                let fit = super::revolution_search::fit_direction(samples, &turned, loss_scale_mm);
+                let moved = Axis::new(samples.centroid + fit.centre, turned);
+                separation(samples, blocks, best, &moved, loss_scale_mm).t_statistic
+            })
+        })
+        .fold(0.0, f64::max);
+    let shift_mm = (0..8)
+        .map(|k| {
+            let angle = k as f64 * std::f64::consts::FRAC_PI_4;
+            let across = e1 * angle.cos() + e2 * angle.sin();
+            bound(&|step_mm: f64| separation(samples, blocks, best, &Axis::new(anchor + across * step_mm, d), loss_scale_mm).t_statistic)
+        })
+        .fold(0.0, f64::max);
+    (turn_deg, shift_mm)
+}

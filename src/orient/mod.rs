@@ -103,10 +103,12 @@ pub struct Orientation {
     /// Why an axis given as found may still be wrong (another axis fits about as well):
     /// such an axis is `axis_uncertain`. Empty when there is none.
     pub doubts: Vec<String>,
-    /// Calibrated uncertainty of the direction, degrees (NaN for a manual axis).
+    /// How far the direction can turn, degrees, before the axis fits the piece worse
+    /// block by block ([`landscape::valley_width`]): the width of its valley in units of
+    /// the piece's own noise and deformation. NaN for a manual axis, infinite when no axis
+    /// was found.
     pub angle_uncertainty_deg: f64,
-    /// Calibrated uncertainty of the axis position near the sherd, millimetres (NaN for a
-    /// manual axis).
+    /// The same for a move of the axis across itself near the sherd, millimetres.
     pub position_uncertainty_mm: f64,
     /// Vertices of the working copy kept as the surface of revolution.
     pub kept_vertex_count: usize,
@@ -265,6 +267,7 @@ pub fn orient_automatic_with_decimated(mesh: &Mesh, decimated: Option<&Mesh>, op
     let closest = competitors.iter().copied().min_by(|a, b| a.1.t_statistic.total_cmp(&b.1.t_statistic));
     report.competitor = closest.map(|(angle, separation)| (angle, separation.t_statistic));
     report.position_hold = landscape::position_hold(&landscape.samples, &axis, POSITION_PROBE_MM, landscape.loss_scale_mm);
+    let (angle_uncertainty_deg, position_uncertainty_mm) = landscape::valley_width(&landscape.samples, &blocks, &axis, landscape.loss_scale_mm);
     lap("landscape verdict", &mut clock);
 
     let sense_inputs = SenseInputs {
@@ -344,8 +347,8 @@ pub fn orient_automatic_with_decimated(mesh: &Mesh, decimated: Option<&Mesh>, op
         axis,
         verdict,
         doubts,
-        angle_uncertainty_deg: f64::NAN,
-        position_uncertainty_mm: f64::NAN,
+        angle_uncertainty_deg,
+        position_uncertainty_mm,
         kept_vertex_count,
         report,
         sense_inputs: Some(std::sync::Arc::new(sense_inputs)),

@@ -67,7 +67,8 @@ static unsigned long round_number;
 static char context[256];
 
 static SherdStatus check_call(SherdStatus status, const char *call, int line) {
-    if ((uint32_t)status > SHERD_STATUS_PANIC || status == SHERD_STATUS_PANIC ||
+    /* SHERD_STATUS_SENSE_UNCERTAIN is the last status (numbered after the panic). */
+    if ((uint32_t)status > SHERD_STATUS_SENSE_UNCERTAIN || status == SHERD_STATUS_PANIC ||
         strcmp(sherd_status_name((uint32_t)status), "SHERD_STATUS_UNKNOWN") == 0 ||
         (status != SHERD_STATUS_OK && strlen(sherd_last_error_message()) == 0)) {
         fprintf(stderr, "round %lu, line %d: %s returned %s (%u)\n  arguments: %s\n  last error: %s\n", round_number,
@@ -308,7 +309,8 @@ static void orient_refine_measure_draw(SherdMesh *mesh) {
         status = CALL(sherd_orient_from_three_points(mesh, points, options, axis, report, chance(50) ? &json : NULL));
         sherd_manual_options_free(options);
     }
-    if ((status == SHERD_STATUS_OK || status == SHERD_STATUS_NEEDS_MANUAL_ORIENTATION) && axis->size >= sizeof(SherdAxis)) {
+    if ((status == SHERD_STATUS_OK || status == SHERD_STATUS_NEEDS_MANUAL_ORIENTATION || status == SHERD_STATUS_SENSE_UNCERTAIN) &&
+        axis->size >= sizeof(SherdAxis)) {
         used = *axis;
     }
     sherd_buffer_free(json);

@@ -191,7 +191,10 @@ static void test_pipeline_in_one_call(const SherdMesh *mesh, const SherdAxis *tr
 
     CHECK_OK(sherd_analyse(mesh, NULL, 1.0, &from_memory, &memory_json));
     text = buffer_text(memory_json);
-    CHECK(strstr(text, "\"status\":\"ok\"") != NULL && strstr(text, "\"file\":\"<memory>\"") != NULL);
+    /* Oriented: ok, or axis_uncertain where the bootstrap's position interval of this
+       small (3000-face) rim is wide; either gives the axis and the measurements. */
+    CHECK((strstr(text, "\"status\":\"ok\"") != NULL || strstr(text, "\"status\":\"axis_uncertain\"") != NULL) &&
+          strstr(text, "\"file\":\"<memory>\"") != NULL);
     CHECK(json_number(text, "rim_radius_mm") > 0.0);
     printf("  sherd_analyse: %.3f deg from the truth, rim radius %.2f mm\n", angle_deg(&from_memory, truth),
            json_number(text, "rim_radius_mm"));

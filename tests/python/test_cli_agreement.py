@@ -98,7 +98,8 @@ def test_process_file_gives_the_cli_record(scan, cli_record):
         assert_close(guess.axis.point, cli_guess["axis"]["point"], "best guess point")
         assert_close(guess.axis.direction, cli_guess["axis"]["direction"], "best guess direction")
         assert (guess.against, guess.sense_known) == (cli_guess["against"], cli_guess["sense_known"])
-    if analysis.oriented:
+    if analysis.oriented or analysis.sense_uncertain:
+        # A sense-uncertain sherd's axis line is an answer too, its sense not.
         assert_close(analysis.axis.point, cli_record["axis"]["point"], "axis point")
         assert_close(analysis.axis.direction, cli_record["axis"]["direction"], "axis direction")
     else:
@@ -111,7 +112,14 @@ def test_the_pipeline_step_by_step_agrees_with_the_cli(scan, cli_record):
     orientation = sherd.orient_automatic(mesh)
     assert orientation.oriented == (isinstance(cli_record, CommandFailed) or cli_record["status"] in ("ok", "axis_uncertain"))
     if not orientation.oriented:
-        assert cli_record["reason"] in orientation.reason
+        if orientation.sense_uncertain:
+            # The pipeline judges the sense again under the refined axis: the same verdict,
+            # its cues' figures read off a slightly different axis.
+            assert cli_record["status"] == "sense_uncertain"
+            prefix = "the axis line is found but not which way is up"
+            assert cli_record["reason"].startswith(prefix) and prefix in orientation.reason
+        else:
+            assert cli_record["reason"] in orientation.reason
         if not orientation.sense_uncertain:
             # Where to pick, under the declined axis, as the CLI's record gives it.
             points = sherd.points_on_longest_rill(mesh, orientation.axis)
