@@ -200,7 +200,20 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
     if has_line {
         let clock = Instant::now();
         let axis = refinement.as_ref().map_or(&orientation.axis, |r| &r.axis);
-        measurements = Some(measure_with_bootstrap_mesh(&mesh, bootstrap_mesh, axis, &options.measure));
+        // The valley's turn moves the axis, at the sherd's points, by the turn times
+        // their distance along the axis from the centroid, where it turns.
+        let along_mm = mean_distance_along(&mesh, axis);
+        let valley_distance_mm = orientation.position_uncertainty_mm.hypot(orientation.angle_uncertainty_deg.to_radians() * along_mm);
+        let valley = (orientation.angle_uncertainty_deg, valley_distance_mm);
+        // A rim or base levelled by its tangent plane rests on evidence the landscape does
+        // not weigh (a level edge), and its bootstrap alone held the truth on the tuning
+        // corpora; a manual axis (NaN) has no landscape.
+        let levelled = refinement.as_ref().is_some_and(|r| r.report.method == Criterion::Tangent);
+        let measure_options = MeasureOptions {
+            axis_valley_width: (!levelled && valley.0.is_finite() && valley.1.is_finite()).then_some(valley),
+            ..options.measure.clone()
+        };
+        measurements = Some(measure_with_bootstrap_mesh(&mesh, bootstrap_mesh, axis, &measure_options));
         timings.measure_s = clock.elapsed().as_secs_f64();
     }
     let mut analysis = Analysis {
@@ -224,6 +237,14 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
         analysis.timings.measure_s += clock.elapsed().as_secs_f64();
     }
     Ok(analysis)
+}
+
+/// The mean distance of the mesh's vertices from their centroid along `axis`, mm.
+fn mean_distance_along(mesh: &Mesh, axis: &Axis) -> f64 {
+    let direction = axis.direction.into_inner();
+    let count = mesh.positions.len().max(1) as f64;
+    let mean = mesh.positions.iter().map(|p| p.coords.dot(&direction)).sum::<f64>() / count;
+    mesh.positions.iter().map(|p| (p.coords.dot(&direction) - mean).abs()).sum::<f64>() / count
 }
 
 impl PipelineOptions {

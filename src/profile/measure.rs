@@ -31,6 +31,12 @@ pub struct MeasureOptions {
     pub bootstrap: BootstrapOptions,
     /// Heights at which the wall thickness is measured along the profile.
     pub wall_thickness_stations: usize,
+    /// How far the axis turns (degrees) and moves (mm) before it fits the sherd worse
+    /// region by region, from the automatic orientation's landscape
+    /// ([`crate::orient::landscape::valley_width`]); added in quadrature to the
+    /// bootstrap's intervals. The bootstrap resamples the scan's noise only; a vessel's
+    /// ovality and wobble bias every resample alike, and widen the valley instead.
+    pub axis_valley_width: Option<(f64, f64)>,
 }
 
 impl Default for MeasureOptions {
@@ -39,6 +45,7 @@ impl Default for MeasureOptions {
             refine: RefineOptions::default(),
             bootstrap: BootstrapOptions::default(),
             wall_thickness_stations: 24,
+            axis_valley_width: None,
         }
     }
 }
@@ -145,8 +152,11 @@ const EDGE_SECTIONS: usize = 24;
 const EDGE_BAND_MM: f64 = 1.0;
 
 /// The outer radius of `edge` under an axis (`oriented`: the vertices in its frame).
-/// Rim: per vertical section, the radius of the highest outer-skin vertex (the rim's
-/// outer edge: on a flaring wall the inner edge of the lip is the higher one). Base: per
+/// Rim: per vertical section, the lip's outer edge as a radius chart reads it: the
+/// larger of the highest outer-skin vertex's radius (the edge of a lip that slopes
+/// outwards and down, whose inner edge is the higher) and the largest radius within
+/// [`EDGE_BAND_MM`] below the section's top (the edge of a flat lip, across which the
+/// highest vertex lies anywhere). Base: per
 /// vertical section, the radius of the outer-skin vertex nearest to [`EDGE_BAND_MM`]
 /// above the standing plane (where the outer skin leaves it). The median over sections.
 fn edge_radius(oriented: &[Point], outer_skin: &[bool], edge: Edge) -> Option<f64> {
@@ -162,12 +172,12 @@ fn edge_radius(oriented: &[Point], outer_skin: &[bool], edge: Edge) -> Option<f6
         .filter_map(|indices| {
             let radius = |p: &Point| planar_length(p.x, p.y);
             match edge {
-                Edge::Rim => indices
-                    .iter()
-                    .filter(|&&i| outer_skin[i])
-                    .map(|&i| oriented[i])
-                    .max_by(|a, b| a.z.total_cmp(&b.z))
-                    .map(|p| radius(&p)),
+                Edge::Rim => {
+                    let highest_outer = indices.iter().filter(|&&i| outer_skin[i]).map(|&i| oriented[i]).max_by(|a, b| a.z.total_cmp(&b.z));
+                    let top = indices.iter().map(|&i| oriented[i].z).fold(f64::NEG_INFINITY, f64::max);
+                    let widest_at_top = indices.iter().map(|&i| oriented[i]).filter(|p| p.z >= top - EDGE_BAND_MM).map(|p| radius(&p)).max_by(f64::total_cmp);
+                    highest_outer.map(|p| radius(&p)).into_iter().chain(widest_at_top).max_by(f64::total_cmp)
+                }
                 // The outer skin where it has risen by the band above the standing plane.
                 Edge::Base => indices
                     .iter()
@@ -350,6 +360,15 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
             measurements.axis_angle_interval_deg = angle_interval_deg(axis, &replicates, &options.bootstrap);
             measurements.axis_distance_interval_mm =
                 distance_interval_mm(axis, &replicates, &bootstrap_mesh.positions, &options.bootstrap);
+            if let Some((angle_deg, distance_mm)) = options.axis_valley_width {
+                let widen = |interval: &mut Option<[f64; 2]>, by: f64| {
+                    if let Some([_, upper]) = interval.as_mut().filter(|_| by.is_finite()) {
+                        *upper = upper.hypot(by);
+                    }
+                };
+                widen(&mut measurements.axis_angle_interval_deg, angle_deg);
+                widen(&mut measurements.axis_distance_interval_mm, distance_mm);
+            }
             if let Some([_, upper]) = measurements.axis_angle_interval_deg.filter(|i| i[1] > MAX_UNFLAGGED_AXIS_INTERVAL_DEG) {
                 measurements.axis_doubts.push(format!(
                     "the axis's 95% angle interval reaches {upper:.1} degrees (more than {MAX_UNFLAGGED_AXIS_INTERVAL_DEG})"
