@@ -52,7 +52,11 @@ pub fn sample_blocks(samples: &RevolutionSamples) -> Vec<Option<usize>> {
 
 /// How much better `best` fits the samples than `competitor`, block by block.
 pub fn separation(samples: &RevolutionSamples, blocks: &[Option<usize>], best: &Axis, competitor: &Axis, loss_scale_mm: f64) -> Separation {
-    let best_losses = point_losses(samples, best, loss_scale_mm);
+    separation_from(samples, blocks, &point_losses(samples, best, loss_scale_mm), competitor, loss_scale_mm)
+}
+
+/// [`separation`] with the best axis's point losses computed once by the caller.
+fn separation_from(samples: &RevolutionSamples, blocks: &[Option<usize>], best_losses: &[f64], competitor: &Axis, loss_scale_mm: f64) -> Separation {
     let other_losses = point_losses(samples, competitor, loss_scale_mm);
     let mut sums = vec![(0.0, 0.0); BLOCKS_PER_SIDE * BLOCKS_PER_SIDE];
     for (k, block) in blocks.iter().enumerate() {
@@ -132,6 +136,7 @@ pub fn valley_width(samples: &RevolutionSamples, blocks: &[Option<usize>], best:
     let d = best.direction.into_inner();
     let (e1, e2) = super::halir::perpendicular_frame(&d);
     let anchor = best.closest_point(&samples.centroid);
+    let best_losses = point_losses(samples, best, loss_scale_mm);
     let bound = |separates: &dyn Fn(f64) -> f64| {
         // The first step whose t reaches the limit, interpolated in the logarithm of the
         // step between it and the one before.
@@ -159,7 +164,7 @@ pub fn valley_width(samples: &RevolutionSamples, blocks: &[Option<usize>], best:
                 let turned = (d * step_deg.to_radians().cos() + across * step_deg.to_radians().sin()).normalize();
                 let fit = super::revolution_search::fit_direction(samples, &turned, loss_scale_mm);
                 let moved = Axis::new(samples.centroid + fit.centre, turned);
-                separation(samples, blocks, best, &moved, loss_scale_mm).t_statistic
+                separation_from(samples, blocks, &best_losses, &moved, loss_scale_mm).t_statistic
             })
         })
         .fold(0.0, f64::max);
@@ -167,7 +172,7 @@ pub fn valley_width(samples: &RevolutionSamples, blocks: &[Option<usize>], best:
         .map(|k| {
             let angle = k as f64 * std::f64::consts::FRAC_PI_4;
             let across = e1 * angle.cos() + e2 * angle.sin();
-            bound(&|step_mm: f64| separation(samples, blocks, best, &Axis::new(anchor + across * step_mm, d), loss_scale_mm).t_statistic)
+            bound(&|step_mm: f64| separation_from(samples, blocks, &best_losses, &Axis::new(anchor + across * step_mm, d), loss_scale_mm).t_statistic)
         })
         .fold(0.0, f64::max);
     (turn_deg, shift_mm)
