@@ -718,7 +718,7 @@ impl Default for SearchOptions {
             valleys: 5,
             descent_points: 2500,
             final_valleys: 3,
-            final_points: 3000,
+            final_points: 6000,
             distinct_deg: 5.0,
             loss_scale_bands: 0.25,
             band_spacings: 2.5,
