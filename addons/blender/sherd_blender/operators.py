@@ -234,8 +234,10 @@ class SHERD_OT_orient_automatic(SherdOperator, bpy.types.Operator):
             orientation = sherd().orient_automatic(mesh)
         # A declined sherd's axis is kept as its best guess, for Use best guess.
         offer = keep_best_guess(obj, orientation.best_guess)
-        if not orientation.oriented and not orientation.sense_uncertain and _select_rill_points(obj, mesh, orientation.axis):
-            self.notify({'WARNING'}, f"needs manual orientation: {orientation.reason}. Three vertices on its "
+        # Declined, or up and down not told apart: three points on a wheel rill settle both.
+        if not orientation.oriented and _select_rill_points(obj, mesh, orientation.axis):
+            what = "sense uncertain (check which way is up)" if orientation.sense_uncertain else "needs manual orientation"
+            self.notify({'WARNING'}, f"{what}: {orientation.reason}. Three vertices on its "
                         f"longest wheel rill are now selected: check them in Edit Mode, then Orient from 3 vertices{offer}")
             return {'CANCELLED'}
         return _finish_orientation(self, obj, orientation, "automatic", offer)
