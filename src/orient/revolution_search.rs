@@ -42,10 +42,11 @@ pub const MAX_TANGENTIAL_NORMAL: f64 = 0.5;
 /// three scales off its band.
 pub const OUTLIER_LOSS: f64 = 0.9;
 
-/// The robust loss of a residual `r` at scale `s` (Geman and McClure): `r^2 / (r^2 +
-/// s^2)`, quadratic near zero and bounded by 1, so that no point weighs more than a break.
-fn robust_loss(r: f64, s: f64) -> f64 {
-    let q = (r / s).powi(2);
+/// The robust loss of a residual `r`, given by its square, at scale `s` (Geman and
+/// McClure): `r^2 / (r^2 + s^2)`, quadratic near zero and bounded by 1, so that no point
+/// weighs more than a break.
+fn robust_loss(r_squared: f64, s: f64) -> f64 {
+    let q = r_squared / (s * s);
     q / (1.0 + q)
 }
 
@@ -464,7 +465,7 @@ fn residual(at: &Placed, (mean, normal): BandLine) -> f64 {
 /// The robust loss of a point on its band: its distance to the band's line and its
 /// normal's turn out of the meridian plane (Wilczek et al. 2018, Fig. 1 a and c at once).
 fn point_loss(at: &Placed, line: BandLine, loss_scale_mm: f64) -> f64 {
-    robust_loss(residual(at, line).hypot(at.tangential_mm), loss_scale_mm)
+    robust_loss(residual(at, line).powi(2) + at.tangential_mm.powi(2), loss_scale_mm)
 }
 
 /// The robust mean loss of the points about the axis through `centre` along the frame's
