@@ -200,11 +200,7 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
     if has_line {
         let clock = Instant::now();
         let axis = refinement.as_ref().map_or(&orientation.axis, |r| &r.axis);
-        // The valley's turn moves the axis, at the sherd's points, by the turn times
-        // their distance along the axis from the centroid, where it turns.
-        let along_mm = mean_distance_along(&mesh, axis);
-        let valley_distance_mm = orientation.position_uncertainty_mm.hypot(orientation.angle_uncertainty_deg.to_radians() * along_mm);
-        let valley = (orientation.angle_uncertainty_deg, valley_distance_mm);
+        let valley = (orientation.angle_uncertainty_deg, orientation.position_uncertainty_mm);
         // A rim or base levelled by its tangent plane rests on evidence the landscape does
         // not weigh (a level edge), and its bootstrap alone held the truth on the tuning
         // corpora; a manual axis (NaN) has no landscape.
@@ -237,14 +233,6 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
         analysis.timings.measure_s += clock.elapsed().as_secs_f64();
     }
     Ok(analysis)
-}
-
-/// The mean distance of the mesh's vertices from their centroid along `axis`, mm.
-fn mean_distance_along(mesh: &Mesh, axis: &Axis) -> f64 {
-    let direction = axis.direction.into_inner();
-    let count = mesh.positions.len().max(1) as f64;
-    let mean = mesh.positions.iter().map(|p| p.coords.dot(&direction)).sum::<f64>() / count;
-    mesh.positions.iter().map(|p| (p.coords.dot(&direction) - mean).abs()).sum::<f64>() / count
 }
 
 impl PipelineOptions {

@@ -31,10 +31,11 @@ pub struct MeasureOptions {
     pub bootstrap: BootstrapOptions,
     /// Heights at which the wall thickness is measured along the profile.
     pub wall_thickness_stations: usize,
-    /// How far the axis turns (degrees) and moves (mm) before it fits the sherd worse
-    /// region by region, from the automatic orientation's landscape
+    /// How far the axis turns (degrees) and moves across itself (mm) before it fits the
+    /// sherd worse region by region, from the automatic orientation's landscape
     /// ([`crate::orient::landscape::valley_width`]); added in quadrature to the
-    /// bootstrap's intervals. The bootstrap resamples the scan's noise only; a vessel's
+    /// bootstrap's intervals (the turn to the distance interval as the distance it moves
+    /// the sherd's points). The bootstrap resamples the scan's noise only; a vessel's
     /// ovality and wobble bias every resample alike, and widen the valley instead.
     pub axis_valley_width: Option<(f64, f64)>,
 }
@@ -360,7 +361,12 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
             measurements.axis_angle_interval_deg = angle_interval_deg(axis, &replicates, &options.bootstrap);
             measurements.axis_distance_interval_mm =
                 distance_interval_mm(axis, &replicates, &bootstrap_mesh.positions, &options.bootstrap);
-            if let Some((angle_deg, distance_mm)) = options.axis_valley_width {
+            if let Some((angle_deg, move_mm)) = options.axis_valley_width {
+                // The turn moves the axis, at the sherd's points, by the turn times their
+                // distance along the axis from their mean height, where it turns.
+                let mean_height = oriented.iter().map(|p| p.z).sum::<f64>() / oriented.len() as f64;
+                let along_mm = oriented.iter().map(|p| (p.z - mean_height).abs()).sum::<f64>() / oriented.len() as f64;
+                let distance_mm = move_mm.hypot(angle_deg.to_radians() * along_mm);
                 let widen = |interval: &mut Option<[f64; 2]>, by: f64| {
                     if let Some([_, upper]) = interval.as_mut().filter(|_| by.is_finite()) {
                         *upper = upper.hypot(by);
