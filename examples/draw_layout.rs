@@ -36,13 +36,10 @@ fn main() -> sherd::Result<()> {
             for extension in ["png", "svg"] {
                 drawing.write(&out.join(format!("{name}_{tag}.{extension}")))?;
             }
-            println!(
-                "{name} {tag}: {:.0} x {:.0} mm; rim arc {:?} deg (truth {:?})",
-                drawing.width_mm,
-                drawing.height_mm,
-                sherd.truth.rim_sector_angle_deg.map(|d| d.round()),
-                sherd.truth.rim_sector_angle_deg.map(|d| (d / 3.6).round()),
-            );
+            match sherd.truth.rim_sector_angle_deg {
+                Some(deg) => println!("{name} {tag}: {:.0} x {:.0} mm; true rim arc {deg:.1} deg ({:.1}% of rim)", drawing.width_mm, drawing.height_mm, deg / 3.6),
+                None => println!("{name} {tag}: {:.0} x {:.0} mm", drawing.width_mm, drawing.height_mm),
+            }
         }
     }
     Ok(())
