@@ -79,7 +79,7 @@ fn section_is_left_of_the_axis_with_the_rim_on_top_at_its_true_radius() {
 
     // The diameter label comes from the measurements and matches the truth.
     let label = drawing
-        .layer("annotations")
+        .layer("labels")
         .unwrap()
         .children
         .iter()
@@ -203,7 +203,7 @@ fn svg_parses_with_usvg_and_keeps_its_layers() {
     let tree = usvg::Tree::from_data(&bytes, &usvg::Options::default()).expect("usvg parses the SVG");
     assert!(tree.size().width() > 10.0);
     let text = String::from_utf8(bytes).unwrap();
-    for layer in ["section", "exterior-view", "interior-view", "axis", "annotations", "scale-bar", "legend"] {
+    for layer in ["section", "exterior-view", "interior-view", "axis", "lines", "labels", "scale-bar", "preservation", "legend"] {
         assert!(text.contains(&format!("<g id=\"{layer}\" inkscape:groupmode=\"layer\"")), "layer {layer}");
         assert!(tree.node_by_id(layer).is_some(), "usvg sees {layer}");
     }

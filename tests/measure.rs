@@ -49,6 +49,11 @@ fn rim_sherd_measured_at_its_true_axis() {
         assert!(low < 2.0 * rim && 2.0 * rim < high && high - low < 0.2 * rim, "seed {seed}: interval [{low}, {high}] for {rim}, axis interval {:?}", m.axis_angle_interval_deg);
         assert!((m.sector_angle_deg - truth.sector_angle_deg).abs() < 1.0, "sector {} vs {}", m.sector_angle_deg, truth.sector_angle_deg);
         assert!((m.sector_percent - m.sector_angle_deg / 3.6).abs() < 1e-9);
+        // The rim's own arc, not the sherd's: what "N% of rim" states.
+        let rim_arc = m.rim_sector_deg.expect("a rim arc");
+        let rim_arc_truth = truth.rim_sector_angle_deg.expect("the truth knows the rim arc");
+        assert!((rim_arc - rim_arc_truth).abs() < 1.8, "seed {seed}: rim arc {rim_arc} vs {rim_arc_truth} degrees");
+        assert!(m.base_sector_deg.is_none(), "a rim sherd has no base arc");
         assert!((m.height_mm - truth.height_mm).abs() < 0.5, "height {} vs {}", m.height_mm, truth.height_mm);
         let wall = m.wall_thickness_mm.expect("a wall thickness");
         let wall_truth = truth.vessel.wall_thickness_mm;
@@ -123,6 +128,9 @@ fn base_sherds_give_a_base_diameter() {
         if let Some(base) = m.base_radius_mm {
             measured += 1;
             assert!((base - truth).abs() < 0.05 * truth, "seed {seed}: base radius {base} vs {truth}");
+            // The base's edge spans no more than the sherd, and something of it.
+            let base_arc = m.base_sector_deg.expect("a base arc where there is a base radius");
+            assert!(base_arc > 1.0 && base_arc <= m.sector_angle_deg + 1e-9, "seed {seed}: base arc {base_arc}, sherd {}", m.sector_angle_deg);
         }
     }
     assert!(measured >= 4, "only {measured} base sherds gave a base radius");

@@ -1,22 +1,28 @@
 //! The layout of the archaeological illustration (Wilczek et al. 2018, sections 2.4.1
-//! and 2.4.2; design.md "Drawing conventions"): the axis as a vertical dash-dot line,
-//! the profile section filled left of it with the interior view, the exterior view right
-//! of it, the rim at the top, horizontal lines at rim, carinations and base, the missing
-//! profile prolonged dashed to the full diameter, scale bar, diameter and sector labels.
+//! and 2.4.2; design.md "Drawing conventions"; Griffiths, Jenner and Wilson 1990): the
+//! axis as a vertical dash-dot line; left of it the section at its true radius, filled,
+//! and the interior view between the section and the axis; right of it the exterior view
+//! inside the vessel's outline (the outer profile mirrored, dashed where the view does
+//! not show it); horizontal lines at rim, carinations and base across both halves; the
+//! diameter above; below, the scale bar, the preservation figure of the rim (or base) and
+//! the optional annotations, in rows that never overlap.
+//!
+//! A view that does not fit its half is cut at the axis, as an illustrator cuts it: it is
+//! never moved outside the section, so the figure stays about twice the vessel's largest
+//! radius wide.
 //!
 //! Everything is first placed in object millimetres (x right with the axis at 0, z up);
 //! [`Canvas::finish`] maps it to paper millimetres at the publication scale.
 
 use rayon::prelude::*;
 
-use crate::draw::model::{helvetica_width_mm, Anchor, Dots, Drawing, Element, Group, Image, Path, Rgb, Segment, Stroke, Text};
-use crate::draw::font::text_width_mm;
+use crate::draw::model::{bounds_of, element_extent, Anchor, Dots, Drawing, Element, Group, Image, Path, Rgb, Segment, Stroke, Text};
 use crate::draw::stipple::stipple_dots;
 use crate::draw::view::{crease_edges, outline_loops, render_view, visible_crease_lines, OcclusionField, Shading, Surface, View};
-use crate::draw::{DrawOptions, Placement, RegularityKind, SectionFill};
+use crate::draw::{Annotations, DrawOptions, Placement, RegularityKind, SectionFill};
 use crate::mesh::normals::{compute_vertex_normals, NormalWeighting};
 use crate::mesh::occlusion::near_and_far_light;
-use crate::mesh::Mesh;
+use crate::mesh::{planar_length, Mesh};
 use crate::orient::Axis;
 use crate::profile::measure::{measure, MeasureOptions, Measurements};
 use crate::profile::regularity::{axis_distance_map, ideal_vessel_map, ColorMap, ColorScale};
@@ -29,6 +35,14 @@ const WHITE: Rgb = [255, 255, 255];
 const MARGIN_MM: f64 = 8.0;
 /// Gap between the axis and a view drawn beside it, paper mm.
 const GAP_MM: f64 = 4.0;
+/// How far the axis line reaches beyond the fragment's top and bottom, paper mm.
+const AXIS_OVERSHOOT_MM: f64 = 4.0;
+/// Space between the items below the drawing and between their rows, paper mm.
+const ITEM_GAP_MM: f64 = 4.0;
+/// Size of the diameter labels and annotations, paper mm.
+const LABEL_SIZE_MM: f64 = 3.2;
+/// Radius of the preservation figure's circle, paper mm.
+const PRESERVATION_RADIUS_MM: f64 = 5.0;
 
 /// Most pixels a rendered view may have: 50 million, about 800 MB of depth, face, colour
 /// and darkness buffers. A scan in metres read as millimetres, or 4800 dpi at natural
@@ -55,52 +69,15 @@ impl Canvas {
         Stroke { color: BLACK, width_mm, dash_mm: dash_mm.to_vec() }
     }
 
-    fn text(&mut self, layer: &str, position: [f64; 2], content: String, size_mm: f64, anchor: Anchor) {
-        self.layer(layer).push(Element::Text(Text { position, content, size_mm, anchor, color: BLACK }));
+    /// The rectangle (object millimetres, z up) `elements` cover.
+    fn bounds(&self, elements: &[Element]) -> Option<[f64; 4]> {
+        bounds_of(|include| elements.iter().for_each(|e| element_extent(e, self.scale, true, include)))
     }
 
     /// Maps object coordinates to paper millimetres and wraps up the drawing.
     fn finish(mut self, dpi: f64) -> Drawing {
-        let (mut x0, mut x1, mut z0, mut z1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-        let mut include = |x: f64, z: f64| {
-            x0 = x0.min(x);
-            x1 = x1.max(x);
-            z0 = z0.min(z);
-            z1 = z1.max(z);
-        };
-        fn visit(e: &Element, scale: f64, include: &mut dyn FnMut(f64, f64)) {
-            match e {
-                Element::Path(p) => p.segments.iter().for_each(|s| match s {
-                    Segment::MoveTo(q) | Segment::LineTo(q) => include(q[0], q[1]),
-                    Segment::Close => {}
-                }),
-                Element::Dots(d) => d.centers.iter().for_each(|c| include(c[0], c[1])),
-                Element::Text(t) => {
-                    // The PNG's stroke font is a little wider than Helvetica: room for both.
-                    let width = helvetica_width_mm(&t.content, t.size_mm).max(text_width_mm(&t.content, t.size_mm)) * scale;
-                    let left = match t.anchor {
-                        Anchor::Start => t.position[0],
-                        Anchor::Middle => t.position[0] - width / 2.0,
-                        Anchor::End => t.position[0] - width,
-                    };
-                    include(left, t.position[1] - 0.25 * t.size_mm * scale);
-                    include(left + width, t.position[1] + 0.8 * t.size_mm * scale);
-                }
-                Element::Image(i) => {
-                    include(i.x_mm, i.y_mm);
-                    include(i.x_mm + i.width_mm, i.y_mm - i.height_mm);
-                }
-                Element::Group(g) => g.children.iter().for_each(|c| visit(c, scale, include)),
-            }
-        }
-        for layer in &self.layers {
-            for e in &layer.children {
-                visit(e, self.scale, &mut include);
-            }
-        }
-        if !x0.is_finite() {
-            (x0, x1, z0, z1) = (0.0, 1.0, 0.0, 1.0);
-        }
+        let all: Vec<Element> = self.layers.iter().map(|g| Element::Group(g.clone())).collect();
+        let [x0, z0, x1, z1] = self.bounds(&all).unwrap_or([0.0, 0.0, 1.0, 1.0]);
         let scale = self.scale;
         let map = move |p: [f64; 2]| [(p[0] - x0) / scale + MARGIN_MM, (z1 - p[1]) / scale + MARGIN_MM];
         fn convert(e: &mut Element, scale: f64, map: &dyn Fn([f64; 2]) -> [f64; 2]) {
@@ -186,6 +163,7 @@ pub(crate) fn build(mesh: &Mesh, axis: &Axis, options: &DrawOptions) -> Result<D
             angle.to_degrees()
         )));
     }
+    let profile = OuterProfile::of(&section);
     // The measurements (single-threaded, about as long as everything else together) run
     // beside the shading and the views; they only label the drawing.
     let (measurements, drawn) = rayon::join(
@@ -197,108 +175,228 @@ pub(crate) fn build(mesh: &Mesh, axis: &Axis, options: &DrawOptions) -> Result<D
                 measure(mesh, axis, &measure_options)
             }
         },
-        || draw_views(mesh, axis, &oriented, &normals, &section, options),
+        || draw_views(mesh, axis, &oriented, &normals, &section, &profile, options),
     );
     let Views { exterior, interior, regularity_map } = drawn?;
     let scale = options.scale_denominator as f64;
-    let pixel_mm = scale * 25.4 / options.dpi;
     let mut canvas = Canvas { scale, layers: Vec::new() };
-    let profile = OuterProfile::of(&section);
-    let exterior_shift = match options.placement {
-        Placement::Beside => GAP_MM * scale - exterior.view.top_left()[0],
-        Placement::TrueDistance => 0.0,
-    };
-    let exterior_right = exterior.view.top_left()[0] + exterior_shift + exterior.view.camera.width as f64 * pixel_mm;
-    canvas.layer("exterior-view").extend(exterior.elements(exterior_shift));
-    if let Some(interior) = interior {
-        let width = interior.view.camera.width as f64 * pixel_mm;
-        let shift = match options.placement {
-            Placement::Beside => {
-                // Between the section and the axis when it fits, else left of the section.
-                let left = -profile.inner_radius_min + GAP_MM * scale;
-                if left + width <= -GAP_MM * scale {
-                    left - interior.view.top_left()[0]
-                } else {
-                    -profile.outer_radius_max - GAP_MM * scale - width - interior.view.top_left()[0]
-                }
-            }
-            Placement::TrueDistance => 0.0,
-        };
-        canvas.layer("interior-view").extend(interior.elements(shift));
+    let exterior_right = exterior.as_ref().map_or(0.0, PlacedView::right);
+    if let Some(view) = &exterior {
+        canvas.layer("exterior-view").extend(view.elements.iter().cloned());
     }
-
+    if let Some(view) = &interior {
+        canvas.layer("interior-view").extend(view.elements.iter().cloned());
+    }
     add_section(&mut canvas, &section, options.section_fill);
     let z_top = oriented.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
     let z_bottom = oriented.iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
+    let overshoot = AXIS_OVERSHOOT_MM * scale;
     let axis_path = Path::polyline(
-        &[[0.0, z_top + 4.0 * scale], [0.0, z_bottom - 4.0 * scale]],
+        &[[0.0, z_top + overshoot], [0.0, z_bottom - overshoot]],
         false,
         None,
         Some(canvas.stroke(0.25, &[4.0, 1.0, 0.5, 1.0])),
     );
     canvas.layer("axis").push(Element::Path(axis_path));
-    add_annotations(&mut canvas, &profile, &measurements, exterior_right, options);
-    add_scale_bar(&mut canvas, z_bottom - 9.0 * scale, exterior_right, &profile);
-    if let Some(map) = &regularity_map {
-        // Right of everything: the dashed prolongation reaches the full radius, often
-        // beyond the exterior view, and must not run through the legend's labels.
-        let right = if options.prolongation { exterior_right.max(profile.outer_radius_max) } else { exterior_right };
-        add_legend(&mut canvas, map, right + 8.0 * scale, z_top);
+    add_lines(&mut canvas, &profile, &measurements, exterior_right, options);
+    if options.prolongation {
+        add_outline(&mut canvas, &profile, &measurements, exterior.as_ref());
     }
+    // Everything else goes above and below the fragment, within the vessel's width.
+    let largest_radius = oriented.iter().map(|p| planar_length(p.x, p.y)).fold(profile.outer_radius_max, f64::max);
+    let labels_top = add_labels(&mut canvas, &measurements, z_top + overshoot);
     if let Some(title) = &options.title {
-        let x = -profile.outer_radius_max;
-        canvas.text("annotations", [x, z_top + 21.0 * scale], title.clone(), 4.0, Anchor::Start);
+        let size = 4.0;
+        canvas.text("title", [-largest_radius, labels_top + 0.25 * size * scale + 2.0 * scale], title.clone(), size, Anchor::Start);
+    }
+    let mut shelf = Shelf::below(&canvas, -largest_radius, largest_radius, z_bottom - overshoot);
+    let mut bar = vec![scale_bar(&canvas, 2.0 * largest_radius)];
+    shelf.place(&canvas, &mut bar);
+    canvas.layer("scale-bar").extend(bar);
+    for mut figure in preservation_figures(&canvas, &measurements) {
+        shelf.place(&canvas, &mut figure);
+        canvas.layer("preservation").extend(figure);
+    }
+    let mut notes = annotations(&measurements, options.annotations, scale);
+    if !notes.is_empty() {
+        shelf.place(&canvas, &mut notes);
+        canvas.layer("annotations").extend(notes);
+    }
+    if let Some(map) = &regularity_map {
+        let mut legend = legend(&canvas, map);
+        shelf.place(&canvas, &mut legend);
+        canvas.layer("legend").extend(legend);
     }
     Ok(canvas.finish(options.dpi))
 }
 
-/// The rendered views and the regularity map their colours follow.
-struct Views {
-    exterior: DrawnView,
-    interior: Option<DrawnView>,
-    regularity_map: Option<ColorMap>,
-}
-
-/// One view with its vector content in object millimetres, before it is shifted along x
-/// to its place.
-struct DrawnView {
-    view: View,
-    /// Raster image, stipple dots, crease lines and outline, unshifted.
-    elements: Vec<Element>,
-}
-
-impl DrawnView {
-    /// The elements moved by `shift` object millimetres along x.
-    fn elements(self, shift: f64) -> Vec<Element> {
-        let mut elements = self.elements;
-        for e in &mut elements {
-            shift_element(e, shift);
-        }
-        elements
+impl Canvas {
+    fn text(&mut self, layer: &str, position: [f64; 2], content: String, size_mm: f64, anchor: Anchor) {
+        self.layer(layer).push(Element::Text(Text { position, content, size_mm, anchor, color: BLACK }));
     }
 }
 
-fn shift_element(e: &mut Element, shift: f64) {
+/// Rows of items below the drawing, filled left to right between `left` and `right`
+/// (object millimetres) and wrapped to a new row when the next item does not fit: no item
+/// overlaps another or the drawing above.
+struct Shelf {
+    left: f64,
+    right: f64,
+    gap: f64,
+    cursor: f64,
+    row_top: f64,
+    row_bottom: f64,
+}
+
+impl Shelf {
+    fn below(canvas: &Canvas, left: f64, right: f64, z: f64) -> Shelf {
+        let gap = ITEM_GAP_MM * canvas.scale;
+        Shelf { left, right, gap, cursor: left, row_top: z - gap, row_bottom: z - gap }
+    }
+
+    /// Moves `item` (built anywhere) to the next free place.
+    fn place(&mut self, canvas: &Canvas, item: &mut [Element]) {
+        let Some([x0, z0, x1, z1]) = canvas.bounds(item) else { return };
+        if self.cursor > self.left && self.cursor + (x1 - x0) > self.right {
+            self.row_top = self.row_bottom - self.gap;
+            self.cursor = self.left;
+        }
+        let offset = [self.cursor - x0, self.row_top - z1];
+        item.iter_mut().for_each(|e| translate_element(e, offset));
+        self.cursor += x1 - x0 + self.gap;
+        self.row_bottom = self.row_bottom.min(self.row_top - (z1 - z0));
+    }
+}
+
+/// The rendered views and the regularity map their colours follow.
+struct Views {
+    /// `None` when the whole view was cut away.
+    exterior: Option<PlacedView>,
+    interior: Option<PlacedView>,
+    regularity_map: Option<ColorMap>,
+}
+
+/// Which half of the drawing a view belongs to.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Half {
+    /// Right of the axis: the outside of the vessel.
+    Exterior,
+    /// Left of the axis, between the section and the axis: the inside.
+    Interior,
+}
+
+/// A view at its place: cut at the axis, its vector content in object millimetres.
+struct PlacedView {
+    view: View,
+    /// How far the view moved along x from where it was rendered, object mm.
+    shift: f64,
+    /// Raster image, stipple dots, crease lines and outline, in place.
+    elements: Vec<Element>,
+}
+
+impl PlacedView {
+    /// The right edge of the view, object mm.
+    fn right(&self) -> f64 {
+        self.view.top_left()[0] + self.shift + self.view.camera.width as f64 * self.view.camera.pixel_mm
+    }
+
+    /// Whether a covered pixel lies within `reach` object mm of `[x, z]`.
+    fn covers(&self, point: [f64; 2], reach: f64) -> bool {
+        let [left, top] = self.view.top_left();
+        let pixel = self.view.camera.pixel_mm;
+        let (width, height) = (self.view.camera.width as i64, self.view.camera.height as i64);
+        let column = ((point[0] - left - self.shift) / pixel).floor() as i64;
+        let row = ((top - point[1]) / pixel).floor() as i64;
+        let k = (reach / pixel).ceil() as i64;
+        (row - k..=row + k).filter(|r| (0..height).contains(r)).any(|r| {
+            (column - k..=column + k)
+                .filter(|c| (0..width).contains(c))
+                .any(|c| self.view.buffer.face[(r * width + c) as usize] != crate::mesh::raster::NO_FACE)
+        })
+    }
+}
+
+/// How far along x a rendered view moves to its place, object mm.
+///
+/// The exterior view stays inside the vessel's outline, the outer profile mirrored right
+/// of the axis, touching it where they meet: at the true distance it already is (its
+/// edge at angle 0 is the profile), beside the axis it starts [`GAP_MM`] right of the
+/// axis unless it would cross the outline there. The interior view stays right of the
+/// section: beside the axis against the section's inner side, at the true distance where
+/// it is (its edge is the section's outer side), moved right only where the fragment's
+/// edge passes the section.
+fn view_shift(view: &View, half: Half, placement: Placement, profile: &OuterProfile, gap: f64) -> f64 {
+    let [left, top] = view.top_left();
+    let pixel = view.camera.pixel_mm;
+    // Per covered row: its height and the object x of its first and last covered pixel's outer edges.
+    let rows: Vec<(f64, f64, f64)> = view
+        .covered_columns()
+        .iter()
+        .enumerate()
+        .filter_map(|(y, c)| c.map(|(a, b)| (top - (y as f64 + 0.5) * pixel, left + a as f64 * pixel, left + (b + 1) as f64 * pixel)))
+        .collect();
+    if rows.is_empty() {
+        return 0.0;
+    }
+    let right_of = |radius_at: &dyn Fn(f64) -> f64| rows.iter().map(|&(z, l, _)| -radius_at(z) - l).fold(f64::NEG_INFINITY, f64::max);
+    match half {
+        Half::Exterior => {
+            let wanted = match placement {
+                Placement::Beside => gap - rows.iter().map(|r| r.1).fold(f64::INFINITY, f64::min),
+                Placement::TrueDistance => 0.0,
+            };
+            let room = rows.iter().map(|&(z, _, r)| profile.outer_at(z) - r).fold(f64::INFINITY, f64::min);
+            wanted.min(room)
+        }
+        Half::Interior => match placement {
+            Placement::Beside => right_of(&|z| profile.inner_at(z)),
+            Placement::TrueDistance => right_of(&|z| profile.outer_at(z)).max(0.0),
+        },
+    }
+}
+
+/// Cuts a view moved by `shift` at the axis: the columns on the other half go.
+fn cut_at_axis(view: &mut View, half: Half, shift: f64) {
+    let left = view.top_left()[0] + shift;
+    let pixel = view.camera.pixel_mm;
+    let width = view.camera.width;
+    // Columns whose left (right) edge is at or beyond the axis, counted from the left.
+    let axis_column = -left / pixel;
+    match half {
+        Half::Exterior => view.crop_columns(axis_column.ceil().clamp(0.0, width as f64) as usize, width),
+        Half::Interior => view.crop_columns(0, axis_column.floor().clamp(0.0, width as f64) as usize),
+    }
+}
+
+fn translate_element(e: &mut Element, offset: [f64; 2]) {
+    let moved = |q: &mut [f64; 2]| {
+        q[0] += offset[0];
+        q[1] += offset[1];
+    };
     match e {
         Element::Path(p) => p.segments.iter_mut().for_each(|s| match s {
-            Segment::MoveTo(q) | Segment::LineTo(q) => q[0] += shift,
+            Segment::MoveTo(q) | Segment::LineTo(q) => moved(q),
             Segment::Close => {}
         }),
-        Element::Dots(d) => d.centers.iter_mut().for_each(|c| c[0] += shift),
-        Element::Text(t) => t.position[0] += shift,
-        Element::Image(i) => i.x_mm += shift,
-        Element::Group(g) => g.children.iter_mut().for_each(|c| shift_element(c, shift)),
+        Element::Dots(d) => d.centers.iter_mut().for_each(moved),
+        Element::Text(t) => moved(&mut t.position),
+        Element::Image(i) => {
+            i.x_mm += offset[0];
+            i.y_mm += offset[1];
+        }
+        Element::Group(g) => g.children.iter_mut().for_each(|c| translate_element(c, offset)),
     }
 }
 
 /// Shading data (occlusion, regularity) and the crease edges side by side, then the
-/// exterior and interior views with their vector content, each on its own task.
+/// exterior and interior views, each on its own task, placed and cut at the axis.
 fn draw_views(
     mesh: &Mesh,
     axis: &Axis,
     oriented: &[crate::mesh::Point],
     normals: &[crate::mesh::Vector],
     section: &ProfileSection,
+    profile: &OuterProfile,
     options: &DrawOptions,
 ) -> Result<Views> {
     let style = options.style;
@@ -350,12 +448,22 @@ fn draw_views(
         Placement::Beside => (-std::f64::consts::FRAC_PI_2 - middle, std::f64::consts::FRAC_PI_2 - middle),
         Placement::TrueDistance => (-high, std::f64::consts::PI - high),
     };
-    let draw = |turn: f64| {
-        let view = render_view(&surface, turn, pixel_mm, &shading);
-        let elements = view_elements(&view, &creases, options);
-        DrawnView { view, elements }
+    let gap = GAP_MM * options.scale_denominator as f64;
+    let draw = |turn: f64, half: Half| {
+        let mut view = render_view(&surface, turn, pixel_mm, &shading);
+        let shift = view_shift(&view, half, options.placement, profile, gap);
+        cut_at_axis(&mut view, half, shift);
+        if view.camera.width == 0 {
+            return None;
+        }
+        let mut elements = view_elements(&view, &creases, options);
+        elements.iter_mut().for_each(|e| translate_element(e, [shift, 0.0]));
+        Some(PlacedView { view, shift, elements })
     };
-    let (exterior, interior) = rayon::join(|| draw(exterior_turn), || options.interior_view.then(|| draw(interior_turn)));
+    let (exterior, interior) = rayon::join(
+        || draw(exterior_turn, Half::Exterior),
+        || if options.interior_view { draw(interior_turn, Half::Interior) } else { None },
+    );
     Ok(Views { exterior, interior, regularity_map: regularity.map(|(_, map)| map) })
 }
 
@@ -440,8 +548,9 @@ fn view_elements(view: &View, creases: &[[u32; 2]], options: &DrawOptions) -> Ve
         let lines = visible_crease_lines(creases, view, 0.25);
         if !lines.is_empty() {
             let mut path = Path { segments: Vec::new(), fill: None, stroke: stroke(0.12) };
-            for line in lines {
-                let object: Vec<[f64; 2]> = line.into_iter().map(to_object).collect();
+            // A crease whose middle is in view may end beyond a cut at the axis.
+            for piece in lines.iter().flat_map(|line| clip_to_columns(line, width as f64)) {
+                let object: Vec<[f64; 2]> = piece.into_iter().map(to_object).collect();
                 path.extend_polyline(&object, false);
             }
             children.push(Element::Path(path));
@@ -456,6 +565,29 @@ fn view_elements(view: &View, creases: &[[u32; 2]], options: &DrawOptions) -> Ve
     children
 }
 
+/// The pieces of a polyline (pixel coordinates) between the columns 0 and `width`.
+fn clip_to_columns(line: &[[f64; 2]], width: f64) -> Vec<Vec<[f64; 2]>> {
+    let inside = |p: &[f64; 2]| (0.0..=width).contains(&p[0]);
+    let mut pieces = Vec::new();
+    let mut current: Vec<[f64; 2]> = Vec::new();
+    for (i, p) in line.iter().enumerate() {
+        if i > 0 && inside(&line[i - 1]) != inside(p) {
+            let q = line[i - 1];
+            let edge = if p[0].max(q[0]) > width { width } else { 0.0 };
+            let t = (edge - q[0]) / (p[0] - q[0]);
+            current.push([edge, q[1] + t * (p[1] - q[1])]);
+        }
+        if inside(p) {
+            current.push(*p);
+        } else if !current.is_empty() {
+            pieces.push(std::mem::take(&mut current));
+        }
+    }
+    pieces.push(current);
+    pieces.retain(|piece| piece.len() >= 2);
+    pieces
+}
+
 /// The section left of the axis (x = -r), filled black or hatched, outlined.
 fn add_section(canvas: &mut Canvas, section: &ProfileSection, fill: SectionFill) {
     let outlines: Vec<Vec<[f64; 2]>> =
@@ -465,8 +597,14 @@ fn add_section(canvas: &mut Canvas, section: &ProfileSection, fill: SectionFill)
         shape.extend_polyline(o, true);
     }
     match fill {
-        SectionFill::Black => shape.fill = Some(BLACK),
+        SectionFill::Black => {
+            shape.fill = Some(BLACK);
+            canvas.layer("section").push(Element::Path(shape));
+        }
         SectionFill::Hatched => {
+            // Filled white under the hatching: the interior view it covers must not show through.
+            shape.fill = Some(WHITE);
+            canvas.layer("section").push(Element::Path(shape));
             let spacing = 0.8 * canvas.scale;
             let hatch = hatch_lines(&outlines, spacing);
             let mut lines = Path { segments: Vec::new(), fill: None, stroke: Some(canvas.stroke(0.15, &[])) };
@@ -477,7 +615,6 @@ fn add_section(canvas: &mut Canvas, section: &ProfileSection, fill: SectionFill)
             canvas.layer("section").push(Element::Path(lines));
         }
     }
-    canvas.layer("section").push(Element::Path(shape));
 }
 
 /// 45-degree hatching of the polygons (even-odd), as segments.
@@ -551,6 +688,47 @@ impl OuterProfile {
         OuterProfile { samples, outer_radius_max: r1, inner_radius_min: r0, z_bottom: z0, z_top: z1 }
     }
 
+    /// The outer and inner radius at height `z`, interpolated between the samples and
+    /// held at the end samples beyond them.
+    fn radii_at(&self, z: f64) -> (f64, f64) {
+        let samples = &self.samples;
+        let Some(first) = samples.first() else { return (self.outer_radius_max, self.inner_radius_min) };
+        let i = samples.partition_point(|s| s.0 < z);
+        if i == 0 {
+            return (first.1, first.2);
+        }
+        if i == samples.len() {
+            let last = samples[i - 1];
+            return (last.1, last.2);
+        }
+        let (a, b) = (samples[i - 1], samples[i]);
+        let t = (z - a.0) / (b.0 - a.0).max(1e-12);
+        (a.1 + t * (b.1 - a.1), a.2 + t * (b.2 - a.2))
+    }
+
+    fn outer_at(&self, z: f64) -> f64 {
+        self.radii_at(z).0
+    }
+
+    fn inner_at(&self, z: f64) -> f64 {
+        self.radii_at(z).1
+    }
+
+    /// The samples on the outer skin: without the ends where the outermost crossing runs
+    /// along a slanted break face (the wall narrows there to nothing), unless that end is
+    /// the base (`keep_bottom`) or the rim (`keep_top`), whose rounding is the vessel's own.
+    fn outer_skin(&self, keep_bottom: bool, keep_top: bool) -> &[(f64, f64, f64)] {
+        let mut widths: Vec<f64> = self.samples.iter().map(|s| s.1 - s.2).collect();
+        if widths.is_empty() {
+            return &self.samples;
+        }
+        let wall = crate::statistics::quantile(&mut widths, 0.5);
+        let on_wall = |s: &(f64, f64, f64)| s.1 - s.2 >= 0.6 * wall;
+        let start = if keep_bottom { 0 } else { self.samples.iter().position(on_wall).unwrap_or(0) };
+        let end = if keep_top { self.samples.len() } else { self.samples.iter().rposition(on_wall).map_or(self.samples.len(), |i| i + 1) };
+        &self.samples[start..end.max(start)]
+    }
+
     /// The outer radius at the top (the rim radius, for a rim sherd).
     fn top_radius(&self) -> f64 {
         self.samples.last().map(|s| s.1).unwrap_or(self.outer_radius_max)
@@ -595,13 +773,11 @@ impl OuterProfile {
 }
 
 /// Horizontal lines at rim, carinations and base (rim and base where the measurements
-/// found them preserved), the dashed prolongation of the outer profile mirrored at the
-/// full diameter, and the diameter and sector labels.
-fn add_annotations(canvas: &mut Canvas, profile: &OuterProfile, measurements: &Measurements, exterior_right: f64, options: &DrawOptions) {
-    let scale = canvas.scale;
-    let thin = canvas.stroke(0.15, &[]);
+/// found them preserved), across both halves: to the mirrored outline when it is drawn,
+/// else to the exterior view's edge.
+fn add_lines(canvas: &mut Canvas, profile: &OuterProfile, measurements: &Measurements, exterior_right: f64, options: &DrawOptions) {
     let right_end = |r: f64| if options.prolongation { r } else { exterior_right.max(0.0) };
-    let mut lines = Path { segments: Vec::new(), fill: None, stroke: Some(thin) };
+    let mut lines = Path { segments: Vec::new(), fill: None, stroke: Some(canvas.stroke(0.15, &[])) };
     let top = profile.top_radius();
     if measurements.rim_radius_mm.is_some() {
         lines.extend_polyline(&[[-top, profile.z_top], [right_end(top), profile.z_top]], false);
@@ -614,38 +790,73 @@ fn add_annotations(canvas: &mut Canvas, profile: &OuterProfile, measurements: &M
         lines.extend_polyline(&[[-r, profile.z_bottom], [right_end(r), profile.z_bottom]], false);
     }
     if !lines.segments.is_empty() {
-        canvas.layer("annotations").push(Element::Path(lines));
+        canvas.layer("lines").push(Element::Path(lines));
     }
-    if options.prolongation {
-        let mirrored: Vec<[f64; 2]> = profile.samples.iter().map(|&(z, r, _)| [r, z]).collect();
-        let dashed = Path::polyline(&mirrored, false, None, Some(canvas.stroke(0.2, &[1.5, 1.0])));
-        canvas.layer("annotations").push(Element::Path(dashed));
+}
+
+/// The vessel's outline right of the axis: the outer profile mirrored at its true radius,
+/// dashed, where the exterior view does not already draw it. Beside the axis the view
+/// touches it; at the true distance the view's edge is the profile itself.
+fn add_outline(canvas: &mut Canvas, profile: &OuterProfile, measurements: &Measurements, exterior: Option<&PlacedView>) {
+    // Near the view its own outline stands for the vessel's: at the true distance the
+    // view's edge is a break beside the section's angle, a little off the section's radius
+    // on a vessel that is not quite round.
+    let reach = 1.5 * canvas.scale;
+    let mut dashed = Path { segments: Vec::new(), fill: None, stroke: Some(canvas.stroke(0.2, &[1.5, 1.0])) };
+    let mut run: Vec<[f64; 2]> = Vec::new();
+    let outer_skin = profile.outer_skin(measurements.base_radius_mm.is_some(), measurements.rim_radius_mm.is_some());
+    for &(z, r, _) in outer_skin {
+        let point = [r, z];
+        if exterior.is_some_and(|view| view.covers(point, reach)) {
+            if run.len() >= 2 {
+                dashed.extend_polyline(&run, false);
+            }
+            run.clear();
+        } else {
+            run.push(point);
+        }
     }
+    if run.len() >= 2 {
+        dashed.extend_polyline(&run, false);
+    }
+    if !dashed.segments.is_empty() {
+        canvas.layer("outline").push(Element::Path(dashed));
+    }
+}
+
+/// The diameters, centred on the axis above `z` (the axis line's top), one line each;
+/// returns the height of the top of the last (`z` when there is none).
+fn add_labels(canvas: &mut Canvas, measurements: &Measurements, z: f64) -> f64 {
+    let scale = canvas.scale;
     let mut labels = Vec::new();
     if let Some(d) = measurements.rim_diameter_mm {
         labels.push(match measurements.rim_diameter_interval_mm {
             Some([lo, hi]) => format!("Ø {d:.0} mm ({lo:.0}-{hi:.0})"),
             None => format!("Ø {d:.0} mm"),
         });
-        labels.push(format!("{:.0}% of rim", measurements.sector_percent));
-    } else {
-        labels.push(format!("{:.0}° of circumference", measurements.sector_angle_deg));
     }
     if let Some(d) = measurements.base_diameter_mm {
-        labels.push(format!("base Ø {d:.0} mm"));
+        labels.push(match measurements.base_diameter_interval_mm {
+            Some([lo, hi]) => format!("base Ø {d:.0} mm ({lo:.0}-{hi:.0})"),
+            None => format!("base Ø {d:.0} mm"),
+        });
     }
-    for (i, label) in labels.into_iter().enumerate() {
-        let z = profile.z_top + (6.0 + 4.5 * (2 - i.min(2)) as f64) * scale;
-        canvas.text("annotations", [0.0, z], label, 3.2, Anchor::Middle);
+    let line = 1.4 * LABEL_SIZE_MM * scale;
+    let mut baseline = z + 0.25 * LABEL_SIZE_MM * scale + 1.5 * scale;
+    let mut top = z;
+    // The base's label nearest the drawing, the rim's above it, as the edges stand.
+    for label in labels.into_iter().rev() {
+        canvas.text("labels", [0.0, baseline], label, LABEL_SIZE_MM, Anchor::Middle);
+        top = baseline + 0.8 * LABEL_SIZE_MM * scale;
+        baseline += line;
     }
+    top
 }
 
-/// A scale bar of a round length (alternating black and white centimetres) with its
-/// label, below the drawing.
-fn add_scale_bar(canvas: &mut Canvas, z: f64, exterior_right: f64, profile: &OuterProfile) {
+/// A scale bar of a round length at most half of `span` (alternating black and white
+/// centimetres) with its label, as a group at the origin.
+fn scale_bar(canvas: &Canvas, span: f64) -> Element {
     let scale = canvas.scale;
-    let left = -profile.outer_radius_max;
-    let span = (exterior_right - left).max(10.0);
     let length = [10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0]
         .into_iter()
         .rev()
@@ -654,25 +865,103 @@ fn add_scale_bar(canvas: &mut Canvas, z: f64, exterior_right: f64, profile: &Out
     let pieces = if length <= 100.0 { (length / 10.0) as usize } else { 5 };
     let step = length / pieces as f64;
     let height = 1.5 * scale;
-    let mut group = Group { id: "scale-bar".into(), children: Vec::new() };
+    let mut group = Group { id: "scale-bar-graphic".into(), children: Vec::new() };
     for i in 0..pieces {
-        let x = left + i as f64 * step;
+        let x = i as f64 * step;
         let fill = if i % 2 == 0 { BLACK } else { WHITE };
-        let rect = [[x, z], [x + step, z], [x + step, z - height], [x, z - height]];
+        let rect = [[x, 0.0], [x + step, 0.0], [x + step, -height], [x, -height]];
         group.children.push(Element::Path(Path::polyline(&rect, true, Some(fill), Some(canvas.stroke(0.15, &[])))));
     }
     let label = if length >= 10.0 { format!("{} cm", length / 10.0) } else { format!("{length} mm") };
-    let text = |position, content: String, anchor| {
-        Element::Text(Text { position, content, size_mm: 3.0, anchor, color: BLACK })
-    };
-    group.children.push(text([left, z - height - 4.0 * scale], "0".into(), Anchor::Middle));
-    group.children.push(text([left + length, z - height - 4.0 * scale], label, Anchor::Middle));
-    canvas.layer("scale-bar").push(Element::Group(group));
+    let text = |position, content: String| Element::Text(Text { position, content, size_mm: 3.0, anchor: Anchor::Middle, color: BLACK });
+    group.children.push(text([0.0, -height - 4.0 * scale], "0".into()));
+    group.children.push(text([length, -height - 4.0 * scale], label));
+    Element::Group(group)
 }
 
-/// The colour scale of a regularity map: a vertical bar with values and title.
-fn add_legend(canvas: &mut Canvas, map: &ColorMap, x: f64, top: f64) {
+/// The preserved share of the rim and of the base, each as the usual figure: a thin
+/// circle with the preserved arc drawn bold at its top, and the share written under it
+/// ("9% of rim", the rim's own arc, not the whole sherd's). A fragment with neither gives
+/// the arc of circumference it spans. Each figure is a group at the origin.
+fn preservation_figures(canvas: &Canvas, measurements: &Measurements) -> Vec<Vec<Element>> {
+    let mut arcs = Vec::new();
+    if let Some(deg) = measurements.rim_sector_deg {
+        arcs.push(("rim", deg));
+    }
+    if let Some(deg) = measurements.base_sector_deg {
+        arcs.push(("base", deg));
+    }
+    if arcs.is_empty() && measurements.sector_angle_deg > 0.0 {
+        arcs.push(("circumference", measurements.sector_angle_deg));
+    }
     let scale = canvas.scale;
+    let radius = PRESERVATION_RADIUS_MM * scale;
+    let circle_points = |from_deg: f64, to_deg: f64| -> Vec<[f64; 2]> {
+        let steps = ((to_deg - from_deg).abs() / 3.0).ceil().max(2.0) as usize;
+        (0..=steps)
+            .map(|i| {
+                let a = (from_deg + (to_deg - from_deg) * i as f64 / steps as f64).to_radians();
+                [radius * a.cos(), radius * a.sin()]
+            })
+            .collect()
+    };
+    arcs.into_iter()
+        .map(|(edge, deg)| {
+            let deg = deg.clamp(0.0, 360.0);
+            let mut children = vec![
+                Element::Path(Path::polyline(&circle_points(0.0, 360.0), true, None, Some(canvas.stroke(0.15, &[])))),
+                Element::Path(Path::polyline(&circle_points(90.0 - deg / 2.0, 90.0 + deg / 2.0), false, None, Some(canvas.stroke(0.9, &[])))),
+            ];
+            let percent = deg / 360.0 * 100.0;
+            let content = if edge == "circumference" { format!("{deg:.0}° of circumference") } else { format!("{percent:.0}% of {edge}") };
+            children.push(Element::Text(Text {
+                position: [0.0, -radius - (1.5 + 0.8 * LABEL_SIZE_MM) * scale],
+                content,
+                size_mm: LABEL_SIZE_MM,
+                anchor: Anchor::Middle,
+                color: BLACK,
+            }));
+            vec![Element::Group(Group { id: format!("preservation-{edge}"), children })]
+        })
+        .collect()
+}
+
+/// The annotations asked for, one line each, left-aligned at the origin.
+fn annotations(measurements: &Measurements, wanted: Annotations, scale: f64) -> Vec<Element> {
+    let mut lines = Vec::new();
+    if wanted.height {
+        lines.push(format!("height {:.0} mm", measurements.height_mm));
+    }
+    if wanted.wall_thickness {
+        if let Some(t) = measurements.wall_thickness_mm {
+            lines.push(format!("wall {t:.1} mm"));
+        }
+    }
+    if wanted.capacity {
+        if let Some(litres) = measurements.capacity_litres {
+            lines.push(format!("capacity {litres:.2} l"));
+        }
+    }
+    lines
+        .into_iter()
+        .enumerate()
+        .map(|(i, content)| {
+            Element::Text(Text {
+                position: [0.0, -(i as f64) * 1.4 * LABEL_SIZE_MM * scale],
+                content,
+                size_mm: LABEL_SIZE_MM,
+                anchor: Anchor::Start,
+                color: BLACK,
+            })
+        })
+        .collect()
+}
+
+/// The colour scale of a regularity map: a vertical bar with values and title, its top
+/// left corner at the origin.
+fn legend(canvas: &Canvas, map: &ColorMap) -> Vec<Element> {
+    let scale = canvas.scale;
+    let (x, top) = (0.0, 0.0);
     let (width, height, steps) = (4.0 * scale, 40.0 * scale, 32);
     let mut children = Vec::new();
     for (i, (_, color)) in map.legend(steps).iter().enumerate() {
@@ -705,7 +994,7 @@ fn add_legend(canvas: &mut Canvas, map: &ColorMap, x: f64, top: f64) {
         anchor: Anchor::Start,
         color: BLACK,
     }));
-    canvas.layer("legend").extend(children);
+    children
 }
 
 #[cfg(test)]

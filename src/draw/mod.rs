@@ -22,7 +22,7 @@ mod view;
 
 use std::path::Path;
 
-pub use model::{Anchor, Dots, Drawing, Element, Group, Image, Segment, Stroke, Text};
+pub use model::{bounds_overlap, Anchor, Bounds, Dots, Drawing, Element, Group, Image, Segment, Stroke, Text};
 
 use crate::mesh::occlusion::OcclusionOptions;
 use crate::mesh::Mesh;
@@ -134,6 +134,24 @@ pub enum RegularityKind {
     IdealVessel,
 }
 
+/// The measurements written under the drawing besides the diameters and the preserved
+/// share, which are always given. Each is left out where it was not measured (no
+/// capacity without a profile from base to rim).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct Annotations {
+    /// The preserved height along the axis.
+    pub height: bool,
+    /// The median wall thickness.
+    pub wall_thickness: bool,
+    /// The capacity, litres.
+    pub capacity: bool,
+}
+
+impl Annotations {
+    /// Every annotation.
+    pub const ALL: Annotations = Annotations { height: true, wall_thickness: true, capacity: true };
+}
+
 /// Settings of [`Drawing::build`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct DrawOptions {
@@ -148,12 +166,17 @@ pub struct DrawOptions {
     pub section_angle_rad: Option<f64>,
     /// Section fill.
     pub section_fill: SectionFill,
-    /// View placement.
+    /// View placement. Either way a view that does not fit its half of the drawing is
+    /// cut at the axis.
     pub placement: Placement,
-    /// Draw the interior view left of the axis.
+    /// Draw the interior view between the section and the axis.
     pub interior_view: bool,
-    /// Prolong the outer profile, dashed, to the full diameter.
+    /// Draw the vessel's outline right of the axis (the outer profile mirrored at its
+    /// true radius, dashed where the exterior view does not show it) and carry the rim,
+    /// carination and base lines to it.
     pub prolongation: bool,
+    /// Measurements written under the drawing.
+    pub annotations: Annotations,
     /// The map the regularity style shows.
     pub regularity: RegularityKind,
     /// Ambient occlusion quality.
@@ -182,6 +205,7 @@ impl Default for DrawOptions {
             placement: Placement::Beside,
             interior_view: true,
             prolongation: true,
+            annotations: Annotations::default(),
             regularity: RegularityKind::IdealVessel,
             occlusion: OcclusionOptions { directions: 32, resolution: 512 },
             light_direction: [-0.5, -0.6, 0.62],

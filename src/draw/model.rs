@@ -185,6 +185,80 @@ pub fn latin1_bytes(text: &str) -> Vec<u8> {
     text.chars().map(|c| if (c as u32) < 256 { c as u32 as u8 } else { b'?' }).collect()
 }
 
+/// A rectangle `[left, top, right, bottom]` in millimetres.
+pub type Bounds = [f64; 4];
+
+/// The width a text takes in every writer: the PNG's stroke font is a little wider than
+/// the Helvetica of the vector formats, so the wider of the two.
+pub fn text_extent_mm(text: &str, size_mm: f64) -> f64 {
+    helvetica_width_mm(text, size_mm).max(crate::draw::font::text_width_mm(text, size_mm))
+}
+
+/// Gives `include` the corners of what `element` covers. `text_scale` is the length one
+/// paper millimetre of text or dot takes in the element's coordinates (the publication
+/// scale while the layout works in object millimetres); `y_up` says whether y grows
+/// upwards there (the layout's z) or downwards (the paper's y).
+pub(crate) fn element_extent(element: &Element, text_scale: f64, y_up: bool, include: &mut dyn FnMut(f64, f64)) {
+    let up = if y_up { 1.0 } else { -1.0 };
+    match element {
+        Element::Path(p) => p.segments.iter().for_each(|s| match s {
+            Segment::MoveTo(q) | Segment::LineTo(q) => include(q[0], q[1]),
+            Segment::Close => {}
+        }),
+        Element::Dots(d) => {
+            let r = d.radius_mm * text_scale;
+            d.centers.iter().for_each(|c| {
+                include(c[0] - r, c[1] - r);
+                include(c[0] + r, c[1] + r);
+            })
+        }
+        Element::Text(t) => {
+            let width = text_extent_mm(&t.content, t.size_mm) * text_scale;
+            let left = match t.anchor {
+                Anchor::Start => t.position[0],
+                Anchor::Middle => t.position[0] - width / 2.0,
+                Anchor::End => t.position[0] - width,
+            };
+            // Descenders below the baseline, capitals and accents above it.
+            include(left, t.position[1] - up * 0.25 * t.size_mm * text_scale);
+            include(left + width, t.position[1] + up * 0.8 * t.size_mm * text_scale);
+        }
+        Element::Image(i) => {
+            include(i.x_mm, i.y_mm);
+            include(i.x_mm + i.width_mm, i.y_mm - up * i.height_mm);
+        }
+        Element::Group(g) => g.children.iter().for_each(|c| element_extent(c, text_scale, y_up, include)),
+    }
+}
+
+/// The smallest rectangle holding every corner `visit` gives, `None` when it gives none.
+pub(crate) fn bounds_of(visit: impl FnOnce(&mut dyn FnMut(f64, f64))) -> Option<Bounds> {
+    let mut bounds = [f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY];
+    visit(&mut |x, y| {
+        bounds = [bounds[0].min(x), bounds[1].min(y), bounds[2].max(x), bounds[3].max(y)];
+    });
+    bounds.iter().all(|v| v.is_finite()).then_some(bounds)
+}
+
+impl Element {
+    /// The paper rectangle the element covers (text at its widest writer's width).
+    pub fn bounds(&self) -> Option<Bounds> {
+        bounds_of(|include| element_extent(self, 1.0, false, include))
+    }
+}
+
+impl Group {
+    /// The paper rectangle the group's elements cover, `None` when empty.
+    pub fn bounds(&self) -> Option<Bounds> {
+        bounds_of(|include| self.children.iter().for_each(|e| element_extent(e, 1.0, false, include)))
+    }
+}
+
+/// Whether two rectangles share more than a boundary.
+pub fn bounds_overlap(a: &Bounds, b: &Bounds) -> bool {
+    a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3]
+}
+
 impl Drawing {
     /// All elements, depth first, with the ids of the groups enclosing them.
     pub fn elements(&self) -> Vec<(&str, &Element)> {

@@ -62,7 +62,8 @@ fn write_children(out: &mut String, group: &Group) -> Result<()> {
             }
             Element::Image(image) => write_image(out, image)?,
             Element::Group(inner) => {
-                let _ = writeln!(out, "<g id=\"{}\">", escape(&inner.id));
+                // Labelled like the layers: Inkscape's Objects panel shows the label.
+                let _ = writeln!(out, "<g id=\"{id}\" inkscape:label=\"{id}\">", id = escape(&inner.id));
                 write_children(out, inner)?;
                 out.push_str("</g>\n");
             }

@@ -70,6 +70,45 @@ impl View {
     pub fn top_left(&self) -> [f64; 2] {
         [self.camera.origin.x, self.camera.origin.z]
     }
+
+    /// The first and last covered pixel column of each row, `None` for an empty row.
+    pub fn covered_columns(&self) -> Vec<Option<(usize, usize)>> {
+        let width = self.buffer.width;
+        self.buffer
+            .face
+            .chunks(width.max(1))
+            .map(|row| {
+                let first = row.iter().position(|&f| f != NO_FACE)?;
+                let last = row.iter().rposition(|&f| f != NO_FACE)?;
+                Some((first, last))
+            })
+            .collect()
+    }
+
+    /// Keeps the pixel columns `start..end` only: the view cut along a vertical line, as an
+    /// illustrator cuts a view that does not fit at the axis. Projected vertices keep
+    /// their place on the object (their columns move with the cut).
+    pub fn crop_columns(&mut self, start: usize, end: usize) {
+        let width = self.camera.width;
+        let end = end.min(width);
+        let start = start.min(end);
+        if (start, end) == (0, width) {
+            return;
+        }
+        fn crop<T: Copy>(values: &[T], width: usize, per_pixel: usize, start: usize, end: usize) -> Vec<T> {
+            values.chunks(width * per_pixel).flat_map(|row| row[start * per_pixel..end * per_pixel].iter().copied()).collect()
+        }
+        self.buffer.depth = crop(&self.buffer.depth, width, 1, start, end);
+        self.buffer.face = crop(&self.buffer.face, width, 1, start, end);
+        self.rgba = crop(&self.rgba, width, 4, start, end);
+        self.darkness = crop(&self.darkness, width, 1, start, end);
+        self.buffer.width = end - start;
+        self.camera.width = end - start;
+        self.camera.origin += self.camera.right * (start as f64 * self.camera.pixel_mm);
+        for p in &mut self.projected {
+            p[0] -= start as f32;
+        }
+    }
 }
 
 /// Renders the surface turned by `rotation_rad` about z, seen from -y (x right, z up).

@@ -75,10 +75,18 @@ pub struct Measurements {
     pub base_diameter_mm: Option<f64>,
     /// 95% interval of the base diameter, mm.
     pub base_diameter_interval_mm: Option<[f64; 2]>,
-    /// Preserved arc of the circumference, degrees.
+    /// Arc of the circumference the whole fragment spans, degrees: for a rim sherd whose
+    /// breaks slope away from the rim this is more than the rim it preserves.
     pub sector_angle_deg: f64,
     /// The same as a share of the full circle, percent.
     pub sector_percent: f64,
+    /// Arc of the rim itself the fragment preserves, degrees, when a rim is measured: what
+    /// "12% of rim" in a publication (or a rim chart) means.
+    #[serde(default)]
+    pub rim_sector_deg: Option<f64>,
+    /// Arc of the base's edge the fragment preserves, degrees, when a base is measured.
+    #[serde(default)]
+    pub base_sector_deg: Option<f64>,
     /// Preserved height along the axis, mm.
     pub height_mm: f64,
     /// Median wall thickness along the profile, mm.
@@ -200,6 +208,69 @@ fn edge_radius(oriented: &[Point], outer_skin: &[bool], edge: Edge) -> Option<f6
         })
         .collect();
     (!radii.is_empty()).then(|| quantile(&mut radii, 0.5))
+}
+
+/// Height below the rim's level (above the base's) within which a vertex counts as part
+/// of that edge when its preserved arc is measured, mm: wider than the lip's rounding
+/// and a scan's noise, narrower than the drop of a break leaving the rim.
+const EDGE_SECTOR_BAND_MM: f64 = 1.5;
+
+/// The arc of `edge` the fragment preserves, degrees: the angle about the axis spanned by
+/// the vertices at the edge's level (within [`EDGE_SECTOR_BAND_MM`]), not by the whole
+/// fragment, whose breaks may run far beyond the rim's ends below it. The level is a line
+/// in the angle fitted to the highest (lowest) vertex of each degree, so that a rim tilted
+/// by the potter's hand keeps its lower end. For the base only vertices near its edge
+/// radius count: a floor piece holding the centre spans every angle.
+fn edge_sector_deg(oriented: &[Point], edge: Edge, edge_radius_mm: f64) -> Option<f64> {
+    let outward = edge.outward();
+    let on_edge_ring = |p: &Point| {
+        let r = planar_length(p.x, p.y);
+        match edge {
+            Edge::Rim => r >= 0.5 * edge_radius_mm,
+            Edge::Base => r >= 0.8 * edge_radius_mm,
+        }
+    };
+    // Height measured outwards from the piece: larger is nearer the edge.
+    let candidates: Vec<(f64, f64)> =
+        oriented.iter().filter(|p| on_edge_ring(p)).map(|p| (p.y.atan2(p.x), outward * p.z)).collect();
+    const BINS: usize = 360;
+    let bin_of = |angle: f64| (((angle + std::f64::consts::PI) / std::f64::consts::TAU * BINS as f64) as usize).min(BINS - 1);
+    let mut extreme = vec![f64::NEG_INFINITY; BINS];
+    for &(angle, height) in &candidates {
+        let bin = &mut extreme[bin_of(angle)];
+        *bin = bin.max(height);
+    }
+    let bins: Vec<(f64, f64)> = extreme
+        .iter()
+        .enumerate()
+        .filter(|(_, h)| h.is_finite())
+        .map(|(i, &h)| ((i as f64 + 0.5) / BINS as f64 * std::f64::consts::TAU - std::f64::consts::PI, h))
+        .collect();
+    let highest = bins.iter().map(|b| b.1).fold(f64::NEG_INFINITY, f64::max);
+    if !highest.is_finite() {
+        return None;
+    }
+    // The level starts flat at the highest bin and is refitted to the bins it selects.
+    let (mut intercept, mut slope) = (highest, 0.0);
+    for _ in 0..3 {
+        let selected: Vec<(f64, f64)> = bins.iter().copied().filter(|&(a, h)| h >= intercept + slope * a - EDGE_SECTOR_BAND_MM).collect();
+        let n = selected.len() as f64;
+        let mean_angle = selected.iter().map(|b| b.0).sum::<f64>() / n;
+        let mean_height = selected.iter().map(|b| b.1).sum::<f64>() / n;
+        let spread: f64 = selected.iter().map(|b| (b.0 - mean_angle).powi(2)).sum();
+        slope = if spread > 1e-6 {
+            selected.iter().map(|b| (b.0 - mean_angle) * (b.1 - mean_height)).sum::<f64>() / spread
+        } else {
+            0.0
+        };
+        intercept = mean_height - slope * mean_angle;
+    }
+    let angles: Vec<f64> = candidates
+        .iter()
+        .filter(|&&(a, h)| h >= intercept + slope * a - EDGE_SECTOR_BAND_MM)
+        .map(|&(a, _)| a)
+        .collect();
+    Some(sector_angle_rad(angles).to_degrees())
 }
 
 /// Whether the fragment (`oriented`: the vertices under the axis) rises into the wall
@@ -339,6 +410,8 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
     measurements.rim_radius_mm = has_rim.then(|| edge_radius(&oriented, &outer_skin, Edge::Rim)).flatten();
     measurements.base_radius_mm = has_base.then(|| edge_radius(&oriented, &outer_skin, Edge::Base)).flatten();
     measurements.rim_diameter_mm = measurements.rim_radius_mm.map(|r| 2.0 * r);
+    measurements.rim_sector_deg = measurements.rim_radius_mm.and_then(|r| edge_sector_deg(&oriented, Edge::Rim, r));
+    measurements.base_sector_deg = measurements.base_radius_mm.and_then(|r| edge_sector_deg(&oriented, Edge::Base, r));
     measurements.base_diameter_mm = measurements.base_radius_mm.map(|r| 2.0 * r);
 
     let section = profile_section(mesh, axis, most_informative_angle(mesh, axis));
