@@ -273,7 +273,7 @@ struct Placed {
 /// band, for every candidate axis).
 fn floor_index(value: f64) -> i64 {
     let truncated = value as i64;
-    truncated - ((truncated as f64) > value) as i64
+    truncated.saturating_sub(((truncated as f64) > value) as i64)
 }
 
 fn place(p: &Projected, centre: &Vector2<f64>, band_mm: f64) -> Placed {
