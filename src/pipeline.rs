@@ -370,6 +370,13 @@ pub struct SherdRecord {
     pub sector_angle_deg: Option<f64>,
     /// Preserved arc, percent of the circumference.
     pub sector_percent: Option<f64>,
+    /// The arc of the rim itself, degrees (what a rim chart reads: the rim's own share of
+    /// its circumference, often less than the sherd's); null without a rim.
+    #[serde(default)]
+    pub rim_sector_deg: Option<f64>,
+    /// The arc of the base's edge itself, degrees; null without a base.
+    #[serde(default)]
+    pub base_sector_deg: Option<f64>,
     /// Preserved height, mm.
     pub height_mm: Option<f64>,
     /// Median wall thickness, mm.
@@ -387,6 +394,10 @@ pub struct SherdRecord {
     /// and when the orientation found no axis at all (too few points).
     #[serde(default)]
     pub best_guess: Option<BestGuess>,
+    /// What could not be measured and why (no level rim preserved, no capacity...), and
+    /// the measurements' doubts; empty when there is nothing to say.
+    #[serde(default)]
+    pub notes: Vec<String>,
     /// The drawing written, if any.
     pub drawing: Option<String>,
     /// Seconds per step.
@@ -453,6 +464,9 @@ impl SherdRecord {
             record.height_mm = Some(m.height_mm);
             record.wall_thickness_mm = m.wall_thickness_mm;
             record.capacity_litres = m.capacity_litres;
+            record.rim_sector_deg = m.rim_sector_deg;
+            record.base_sector_deg = m.base_sector_deg;
+            record.notes = m.notes.clone();
         }
         record.rills = rill_check(analysis.rills());
         record
@@ -461,7 +475,7 @@ impl SherdRecord {
     /// The columns of `report.csv`. New columns are added at the end, so that a reader
     /// that takes them by position keeps working; the best guess's (a declined sherd's)
     /// are empty on every other row.
-    pub const CSV_HEADER: &'static str = "file,status,reason,rim_diameter_mm,rim_diameter_low_mm,rim_diameter_high_mm,base_diameter_mm,base_diameter_low_mm,base_diameter_high_mm,sector_angle_deg,sector_percent,height_mm,wall_thickness_mm,capacity_litres,axis_angle_upper_deg,residual_mm,method,drawing,read_s,repair_s,orient_s,refine_s,measure_s,draw_s,rill_count,rill_slope_deg,axis_distance_upper_mm,best_guess_point_x,best_guess_point_y,best_guess_point_z,best_guess_direction_x,best_guess_direction_y,best_guess_direction_z,best_guess_sense_known";
+    pub const CSV_HEADER: &'static str = "file,status,reason,rim_diameter_mm,rim_diameter_low_mm,rim_diameter_high_mm,base_diameter_mm,base_diameter_low_mm,base_diameter_high_mm,sector_angle_deg,sector_percent,height_mm,wall_thickness_mm,capacity_litres,axis_angle_upper_deg,residual_mm,method,drawing,read_s,repair_s,orient_s,refine_s,measure_s,draw_s,rill_count,rill_slope_deg,axis_distance_upper_mm,best_guess_point_x,best_guess_point_y,best_guess_point_z,best_guess_direction_x,best_guess_direction_y,best_guess_direction_z,best_guess_sense_known,rim_sector_deg,base_sector_deg,notes";
 
     /// This record as a row of `report.csv` (RFC 4180 quoting).
     pub fn csv_row(&self) -> String {
@@ -510,6 +524,9 @@ impl SherdRecord {
             direction(1),
             direction(2),
             guess.map(|g| g.sense_known.to_string()).unwrap_or_default(),
+            number(self.rim_sector_deg),
+            number(self.base_sector_deg),
+            csv_quote(&self.notes.join("; ")),
         ]
         .join(",")
     }

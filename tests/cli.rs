@@ -153,6 +153,12 @@ fn orient_json_gives_the_axis_base_to_rim_and_the_rim_radius() {
     assert!((radius - true_radius).abs() < 0.05 * true_radius, "rim radius {radius:.1} mm, truth {true_radius:.1} mm");
     let sector = json["sector_angle_deg"].as_f64().unwrap();
     assert!(sector > 0.0 && sector < 360.0, "sector {sector}");
+    // The rim's own arc, as a rim chart reads it, and why there is no base diameter.
+    let rim_arc = json["rim_sector_deg"].as_f64().expect("a rim sherd has a rim arc");
+    let true_rim_arc = truth["rim_sector_angle_deg"].as_f64().unwrap();
+    assert!((rim_arc - true_rim_arc).abs() < 3.0, "rim arc {rim_arc:.1} deg, truth {true_rim_arc:.1} deg");
+    let notes: Vec<&str> = json["notes"].as_array().unwrap().iter().map(|n| n.as_str().unwrap()).collect();
+    assert!(notes.iter().any(|n| n.contains("no base diameter")), "{notes:?}");
 }
 
 #[test]
@@ -244,7 +250,9 @@ fn a_flat_base_piece_is_reported_as_needing_manual_orientation_with_its_best_gue
     let report = fs::read_to_string(output.join("report.csv")).unwrap();
     let header = split_csv(report.lines().next().unwrap());
     let columns = ["best_guess_point_x", "best_guess_point_y", "best_guess_point_z", "best_guess_direction_x", "best_guess_direction_y", "best_guess_direction_z", "best_guess_sense_known"];
-    assert_eq!(header[header.len() - columns.len()..], columns, "new columns at the end: {header:?}");
+    let first = header.iter().position(|h| h == columns[0]).expect("the best guess's columns");
+    assert_eq!(header[first..first + columns.len()], columns, "{header:?}");
+    assert_eq!(header[header.len() - 3..], ["rim_sector_deg", "base_sector_deg", "notes"], "new columns at the end: {header:?}");
     let rows = csv_rows(&output.join("report.csv"));
     assert_eq!(rows.len(), 1);
     assert_eq!(rows[0].len(), header.len());
