@@ -53,8 +53,10 @@ pub fn stipple_dots(darkness: &[f32], width: usize, height: usize, spacing_px: f
     if width == 0 || height == 0 || !(spacing_px > 0.0) || darkness.len() != width * height {
         return Vec::new();
     }
-    let radius_px = (RELIEF_RADIUS_SPACINGS * spacing_px.max(1.0)).round() as usize;
-    place_dots(&tone_map(darkness, width, height, radius_px), width, height, spacing_px, seed)
+    let spacing = spacing_px.max(1.0);
+    let relief_radius = (RELIEF_RADIUS_SPACINGS * spacing).round() as usize;
+    let tone = tone_map(darkness, width, height, relief_radius, (2.0 * spacing).round() as usize);
+    place_dots(&tone, width, height, spacing_px, seed)
 }
 
 /// The darkness of a view mapped to the tone its stipple follows: pixels of darkness 0 are
@@ -62,11 +64,17 @@ pub fn stipple_dots(darkness: &[f32], width: usize, height: usize, spacing_px: f
 /// `radius_px`, the blur taken over shaded pixels only, so the outline does not count as
 /// relief) added back [`RELIEF_GAIN`] times, and are then stretched linearly so that the
 /// lightest 3% are white and the darkest 1% black (over at least [`MIN_STRETCH_SPAN`]).
-pub fn tone_map(darkness: &[f32], width: usize, height: usize, radius_px: usize) -> Vec<f32> {
+/// The darkness is first smoothed over `dot_px` (two dot spacings): dots cannot show finer
+/// detail, and pixel noise (facets, scanner noise) would otherwise let the darkest pixels
+/// of every neighbourhood set its dots' spacing, which evens the density out.
+pub fn tone_map(darkness: &[f32], width: usize, height: usize, radius_px: usize, dot_px: usize) -> Vec<f32> {
     if width == 0 || height == 0 || darkness.len() != width * height {
         return Vec::new();
     }
     let shaded: Vec<f32> = darkness.iter().map(|&d| f32::from(d > 0.0)).collect();
+    let smoothed = masked_blur(darkness, &shaded, width, height, dot_px);
+    let darkness: Vec<f32> = smoothed.iter().zip(darkness).map(|(&s, &d)| if d > 0.0 { s.max(f32::MIN_POSITIVE) } else { 0.0 }).collect();
+    let darkness = &darkness[..];
     let blurred = masked_blur(darkness, &shaded, width, height, radius_px);
     let enhanced: Vec<f32> = darkness
         .iter()
@@ -98,10 +106,14 @@ pub fn tone_map(darkness: &[f32], width: usize, height: usize, radius_px: usize)
         .collect()
 }
 
-/// `values` blurred over a `(2 radius + 1)^2` neighbourhood, weighted by `weights` (a
-/// normalised convolution: pixels of weight 0 neither count nor darken their
-/// neighbours); three box passes per direction approach a Gaussian.
+/// `values` blurred over about `radius` pixels, weighted by `weights` (a normalised
+/// convolution: pixels of weight 0 neither count nor darken their neighbours); three box
+/// passes of a third of the radius per direction approach a Gaussian. A radius of 0 leaves
+/// the values as they are.
 fn masked_blur(values: &[f32], weights: &[f32], width: usize, height: usize, radius: usize) -> Vec<f32> {
+    if radius == 0 {
+        return values.to_vec();
+    }
     let mut sum: Vec<f32> = values.iter().zip(weights).map(|(v, w)| v * w).collect();
     let mut weight = weights.to_vec();
     let radius = (radius / 3).max(1);
@@ -357,13 +369,13 @@ mod tests {
         let darkness: Vec<f32> = (0..width * height)
             .map(|i| if i % width < 10 { 0.0 } else { 0.2 + 0.3 * (i % width) as f32 / 100.0 })
             .collect();
-        let tone = tone_map(&darkness, width, height, 6);
+        let tone = tone_map(&darkness, width, height, 6, 1);
         assert!((0..height).all(|y| (0..10).all(|x| tone[y * width + x] == 0.0)), "empty pixels stay empty");
         let row = &tone[50 * width..51 * width];
         assert!(row[11] < 0.05 && row[98] > 0.95, "stretched to white and black: {} .. {}", row[11], row[98]);
         assert!(row[20..90].windows(2).all(|w| w[1] >= w[0]), "the ramp stays a ramp");
         // An evenly shaded view keeps its tone instead of having its noise stretched.
-        let even = tone_map(&vec![0.4; 400], 20, 20, 3);
+        let even = tone_map(&vec![0.4; 400], 20, 20, 3, 1);
         assert!(even.iter().all(|&t| (t - 0.4).abs() < 1e-5), "{:?}", &even[..3]);
     }
 
