@@ -55,9 +55,10 @@ fn a011_stipple_density_follows_the_light_styles_shading() {
     // Blocks of 1.5 mm over each shaded view: the mean darkness the light style shows
     // there, and the dots the stipple puts there (the two drawings share their layout).
     const BLOCK_MM: f64 = 1.5;
-    let (mut darkness, mut density) = (Vec::new(), Vec::new());
+    let mut views = Vec::new();
     for element in elements(&shaded) {
         let Element::Image(image) = element else { continue };
+        let (mut darkness, mut density) = (Vec::new(), Vec::new());
         let (w, h) = (image.width_px as usize, image.height_px as usize);
         let pixel_mm = image.width_mm / w as f64;
         let block_px = (BLOCK_MM / pixel_mm).round() as usize;
@@ -85,8 +86,19 @@ fn a011_stipple_density_follows_the_light_styles_shading() {
                 density.push(inside as f64);
             }
         }
+        views.push((darkness, density));
     }
-    assert!(darkness.len() > 200, "{} blocks inside the views", darkness.len());
+    // Within the view whose shading varies most (the exterior, with the rills): the two
+    // views are shaded apart, and comparing across them would hide a flat stipple.
+    let spread = |v: &[f64]| {
+        let mean = v.iter().sum::<f64>() / v.len() as f64;
+        v.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / v.len() as f64
+    };
+    let (darkness, density) = views
+        .into_iter()
+        .filter(|(darkness, _)| darkness.len() > 100)
+        .max_by(|a, b| spread(&a.0).total_cmp(&spread(&b.0)))
+        .expect("a shaded view");
     let r = correlation(&darkness, &density);
     // The darkest and the lightest fifth of the blocks, by the light style's tone.
     let mut order: Vec<usize> = (0..darkness.len()).collect();
@@ -94,8 +106,8 @@ fn a011_stipple_density_follows_the_light_styles_shading() {
     let fifth = order.len() / 5;
     let mean = |indices: &[usize]| indices.iter().map(|&i| density[i]).sum::<f64>() / indices.len() as f64;
     let (light, dark) = (mean(&order[..fifth]), mean(&order[order.len() - fifth..]));
-    println!("A011: {} blocks, correlation {r:.2}, dots per block {light:.1} (lightest fifth) to {dark:.1} (darkest)", darkness.len());
+    println!("A011, exterior view: {} blocks, correlation {r:.2}, dots per block {light:.1} (lightest fifth) to {dark:.1} (darkest)", darkness.len());
     // Uniform dots give a correlation near 0 and a ratio near 1.
-    assert!(r > 0.6, "the dots' density follows the shading with a correlation of {r:.2} only");
+    assert!(r > 0.5, "the dots' density follows the shading with a correlation of {r:.2} only");
     assert!(dark > 2.5 * light, "the darkest fifth has {dark:.1} dots per block, the lightest {light:.1}");
 }

@@ -27,8 +27,12 @@ pub const MAX_STIPPLE_DOTS: usize = 100_000;
 const SATURATED_DOTS_PER_SPACING_SQUARED: f64 = 0.7;
 
 /// Share of the view's shaded pixels left white (the highlights) and made black (the
-/// deepest shadows) by the contrast stretch of [`tone_map`].
-const STRETCH_QUANTILES: [f64; 2] = [0.03, 0.99];
+/// deepest shadows) by the contrast stretch of [`tone_map`]: an illustrator leaves the
+/// lit surface almost blank, so that the shadows of relief and rills stand out.
+const STRETCH_QUANTILES: [f64; 2] = [0.12, 0.99];
+
+/// The stretched tone is raised to this power: mid tones lighter, shadows kept.
+const TONE_GAMMA: f32 = 1.5;
 
 /// Smallest span of darkness the stretch widens to [0, 1]: a view shaded almost evenly is
 /// not made to show its noise.
@@ -62,8 +66,9 @@ pub fn stipple_dots(darkness: &[f32], width: usize, height: usize, spacing_px: f
 /// The darkness of a view mapped to the tone its stipple follows: pixels of darkness 0 are
 /// empty and stay 0; the others get their local relief (the darkness minus its blur over
 /// `radius_px`, the blur taken over shaded pixels only, so the outline does not count as
-/// relief) added back [`RELIEF_GAIN`] times, and are then stretched linearly so that the
-/// lightest 3% are white and the darkest 1% black (over at least [`MIN_STRETCH_SPAN`]).
+/// relief) added back [`RELIEF_GAIN`] times, and are then stretched so that the lightest
+/// 12% are white and the darkest 1% black, mid tones lightened by [`TONE_GAMMA`] (a view
+/// whose tones span less than [`MIN_STRETCH_SPAN`] is kept as it is).
 /// The darkness is first smoothed over `dot_px` (two dot spacings): dots cannot show finer
 /// detail, and pixel noise (facets, scanner noise) would otherwise let the darkest pixels
 /// of every neighbourhood set its dots' spacing, which evens the density out.
@@ -91,18 +96,14 @@ pub fn tone_map(darkness: &[f32], width: usize, height: usize, radius_px: usize,
     };
     let low = quantile(&mut values, STRETCH_QUANTILES[0]);
     let high = quantile(&mut values, STRETCH_QUANTILES[1]);
-    // A view shaded almost evenly keeps its tone: the span is widened so that its middle
-    // maps to itself.
-    let (low, span) = if high - low >= MIN_STRETCH_SPAN {
-        (low, high - low)
-    } else {
-        let middle = 0.5 * (low + high);
-        (middle * (1.0 - MIN_STRETCH_SPAN), MIN_STRETCH_SPAN)
-    };
+    // A view shaded almost evenly keeps its tone rather than have its noise stretched.
+    if high - low < MIN_STRETCH_SPAN {
+        return enhanced;
+    }
     enhanced
         .iter()
         .zip(darkness)
-        .map(|(&e, &d)| if d > 0.0 { ((e - low) / span).clamp(0.0, 1.0) } else { 0.0 })
+        .map(|(&e, &d)| if d > 0.0 { ((e - low) / (high - low)).clamp(0.0, 1.0).powf(TONE_GAMMA) } else { 0.0 })
         .collect()
 }
 
