@@ -66,9 +66,9 @@ pub fn stipple_dots(darkness: &[f32], width: usize, height: usize, spacing_px: f
 /// The darkness of a view mapped to the tone its stipple follows: pixels of darkness 0 are
 /// empty and stay 0; the others get their local relief (the darkness minus its blur over
 /// `radius_px`, the blur taken over shaded pixels only, so the outline does not count as
-/// relief) added back [`RELIEF_GAIN`] times, and are then stretched so that the lightest
-/// 12% are white and the darkest 1% black, mid tones lightened by [`TONE_GAMMA`] (a view
-/// whose tones span less than [`MIN_STRETCH_SPAN`] is kept as it is).
+/// relief) added back twice, and are then stretched so that the lightest 12% are white and
+/// the darkest 1% black, mid tones lightened by a gamma of 1.5 (a view whose tones span
+/// less than 0.12 is kept as it is).
 /// The darkness is first smoothed over `dot_px` (two dot spacings): dots cannot show finer
 /// detail, and pixel noise (facets, scanner noise) would otherwise let the darkest pixels
 /// of every neighbourhood set its dots' spacing, which evens the density out.
@@ -169,7 +169,7 @@ fn box_pass(buffer: &mut [f32], width: usize, height: usize, radius: usize, alon
 /// Dot centres in pixel coordinates of a `width x height` tone image (`tone` in [0, 1],
 /// row-major), their density in proportion to the tone: `spacing_px` is the distance
 /// between dots in fully black areas, lighter areas get `spacing_px / sqrt(tone)`, and
-/// areas lighter than [`WHITE_CUTOFF`] none. At most [`MAX_STIPPLE_DOTS`] dots: a view that
+/// areas lighter than 0.06 none. At most [`MAX_STIPPLE_DOTS`] dots: a view that
 /// would need more gets a wider spacing. Deterministic for a given `seed`.
 pub fn place_dots(darkness: &[f32], width: usize, height: usize, spacing_px: f64, seed: u64) -> Vec<[f64; 2]> {
     if width == 0 || height == 0 || !(spacing_px > 0.0) || darkness.len() != width * height {
