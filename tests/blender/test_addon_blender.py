@@ -342,8 +342,8 @@ def test_synthetic_sherd(vendored, operators):
                       title="B7 mm")
         assert bpy.ops.sherd.draw(filepath=laid_out, style={"linear"}, dpi=60, section_angle_auto=False,
                                   section_angle_rad=0.03, **layout) == {'FINISHED'}
-        mesh, _ = operators.library_mesh(obj)
-        expected = vendored.Drawing(mesh, operators.stored_axis(obj), style=["linear"], dpi=60, section_angle_rad=0.03,
+        drawn_mesh, _ = operators.library_mesh(obj)
+        expected = vendored.Drawing(drawn_mesh, operators.stored_axis(obj), style=["linear"], dpi=60, section_angle_rad=0.03,
                                     **layout).to_bytes("svg")
         with open(laid_out, "rb") as f:
             assert f.read() == expected, "the panel's layout choices do not reach the library as named"
