@@ -141,6 +141,10 @@ fn bad_input_to_draw_is_a_clear_error_naming_the_file_or_value() {
     // The axis of another scan: the record says which scan it was found on.
     let stderr = fails(&[os("draw"), base.as_os_str(), os("--axis"), rim_axis.as_os_str(), os("-o"), out.as_os_str()]);
     assert!(stderr.contains("rim-axis.json") && stderr.contains("another scan") && stderr.contains(&*base.display().to_string()), "{stderr}");
+    // `export` reads its axis file the same way.
+    let csv = dir.path().join("profile.csv");
+    let stderr = fails(&[os("export"), base.as_os_str(), os("--axis"), rim_axis.as_os_str(), os("--profile"), csv.as_os_str()]);
+    assert!(stderr.contains("another scan") && !csv.exists(), "{stderr}");
     // An axis without a record of its scan, far outside the scan.
     let far = dir.path().join("far-axis.json");
     fs::write(&far, r#"{"point": [25000, 0, 0], "direction": [0, 0, 1]}"#).unwrap();
