@@ -597,6 +597,11 @@ typedef struct SherdRefinement SherdRefinement;
 typedef struct SherdRepairOptions SherdRepairOptions;
 
 /**
+ * Rendering styles; any combination (section 2.4.3 and 2.4.4).
+ */
+typedef struct Style Style;
+
+/**
  * The vessel families the generator draws from.
  */
 typedef struct VesselShape VesselShape;
@@ -1673,6 +1678,23 @@ SherdStatus sherd_draw_options_set_regularity(SherdDrawOptions *options, uint32_
 SherdStatus sherd_draw_options_set_views(SherdDrawOptions *options,
                                          bool interior_view,
                                          bool prolongation);
+
+/**
+ * Whether the interior view is drawn between the section and the axis (default true);
+ * the `interior_view` of `sherd draw --interior-view`, Python, Blender and MeshLab.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_interior_view(SherdDrawOptions *options, bool interior_view);
+
+/**
+ * Whether the outer profile is prolonged, dashed, to the full diameter (default true).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_prolongation(SherdDrawOptions *options, bool prolongation);
 
 /**
  * A title (inventory number...) as a NUL-terminated UTF-8 string; NULL removes it.

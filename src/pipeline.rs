@@ -9,6 +9,7 @@ use std::time::Instant;
 use serde::{Deserialize, Serialize};
 
 use crate::draw::{DrawOptions, Drawing};
+use crate::mesh::fingerprint::ScanFingerprint;
 use crate::mesh::io::read_mesh_with_report;
 use crate::mesh::repair::{repair, RepairOptions, RepairReport};
 use crate::mesh::{Mesh, Point};
@@ -59,6 +60,9 @@ pub struct PipelineOptions {
 pub struct Analysis {
     /// The repaired mesh, in millimetres, in the scan's frame.
     pub mesh: Mesh,
+    /// The scan as given, before repair and unit conversion: the record carries it so
+    /// that its axis is not used on another scan.
+    pub scan: ScanFingerprint,
     /// What repair changed.
     pub repair: RepairReport,
     /// The pre-orientation and its verdict.
@@ -133,6 +137,7 @@ impl Analysis {
 pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
     let scale = options.scale();
     mesh.validate()?;
+    let scan = ScanFingerprint::of(&mesh);
     if scale != 1.0 {
         for p in &mut mesh.positions {
             p.coords *= scale;
@@ -214,6 +219,7 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
     }
     let mut analysis = Analysis {
         mesh,
+        scan,
         repair: repair_report,
         orientation,
         refinement,
@@ -400,6 +406,10 @@ pub struct SherdRecord {
     pub notes: Vec<String>,
     /// The drawing written, if any.
     pub drawing: Option<String>,
+    /// The scan the axis was found on (counts and checksum as read, before repair): `sherd
+    /// draw` and `sherd export` refuse an axis file whose scan is another.
+    #[serde(default)]
+    pub scan: Option<ScanFingerprint>,
     /// Seconds per step.
     pub timings: Timings,
 }
@@ -413,7 +423,8 @@ impl SherdRecord {
     /// The record of an analysis, its axis brought back to the scan's own units.
     pub fn from_analysis(file: String, analysis: &Analysis) -> Self {
         let orientation = &analysis.orientation;
-        let mut record = SherdRecord { file, timings: analysis.timings, ..Default::default() };
+        let mut record =
+            SherdRecord { file, timings: analysis.timings, scan: Some(analysis.scan.clone()), ..Default::default() };
         let mut method = orientation.report.method.clone();
         if let Some(refinement) = &analysis.refinement {
             method = format!("{method} + {}", format!("{:?}", refinement.report.method).to_lowercase());

@@ -63,4 +63,6 @@ step "Blender add-on (headless Blender 3.4 and the bpy 4.2 module)"; bash tests/
 
 step "MeshLab filter plugin (MeshLab 2022.02 sources, pymeshlab 2022.2.post4)"; bash tests/meshlab/run.sh
 
+step "The drawings in Inkscape (SVG to PDF and PNG, no warnings) and Ghostscript (EPS, PDF)"; bash tests/inkscape/run.sh
+
 step "all tests passed"

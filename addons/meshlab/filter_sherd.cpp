@@ -467,6 +467,11 @@ std::map<std::string, QVariant> draw(MeshModel& model, const RichParameterList& 
 	sherd::check(sherd_draw_options_set_scale_denominator(options.get(), std::uint32_t(scale)));
 	sherd::check(sherd_draw_options_set_dpi(options.get(), double(parameters.getFloat("dpi"))));
 	sherd::check(sherd_draw_options_set_section_angle_rad(options.get(), sectionAngleRad(parameters)));
+	// The enums' indices are the C ABI's values, which check them.
+	sherd::check(sherd_draw_options_set_placement(options.get(), std::uint32_t(parameters.getEnum("placement"))));
+	sherd::check(sherd_draw_options_set_section_fill(options.get(), std::uint32_t(parameters.getEnum("section_fill"))));
+	sherd::check(sherd_draw_options_set_interior_view(options.get(), parameters.getBool("interior_view")));
+	sherd::check(sherd_draw_options_set_prolongation(options.get(), parameters.getBool("prolongation")));
 	QByteArray title = parameters.getString("title").toUtf8();
 	if (!title.isEmpty()) sherd::check(sherd_draw_options_set_title(options.get(), title.constData()));
 	SherdDrawing* drawing = nullptr;
@@ -764,6 +769,12 @@ RichParameterList FilterSherdPlugin::initParameterList(const QAction* action, co
 		list.addParam(RichBool("style_regularity", false, "Regularity", "Vessel regularity as a colour map."));
 		list.addParam(RichInt("scale_denominator", 1, "Scale 1:", "Publication scale 1:N (1 to 100; 1 is natural size)."));
 		list.addParam(RichFloat("dpi", 300, "DPI", "Resolution of raster content and PNG output (10 to 4800)."));
+		list.addParam(RichEnum("placement", 0, QStringList{"Beside the axis", "True distance"}, "Placement",
+		                       "The views beside the axis (beside), or the fragment at its true distance from it (true_distance)."));
+		list.addParam(RichEnum("section_fill", 0, QStringList{"Black", "Hatched"}, "Section fill",
+		                       "The section filled black (the usual convention) or hatched at 45 degrees."));
+		list.addParam(RichBool("interior_view", true, "Interior view", "Draw the interior view between the section and the axis."));
+		list.addParam(RichBool("prolongation", true, "Prolongation", "Prolong the outer profile, dashed, to the full diameter."));
 		list.addParam(RichString("title", QString(), "Title", "A title (inventory number...) printed on the drawing."));
 		addSectionParameters(list);
 		break;

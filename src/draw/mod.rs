@@ -81,6 +81,14 @@ impl Style {
     /// The style names, as `sherd draw --style` takes them.
     pub const NAMES: [&'static str; 6] = ["linear", "colour", "light", "occlusion", "stipple", "regularity"];
 
+    /// The default styles everywhere (`DrawOptions::default()`, `sherd draw`, the C ABI,
+    /// Python, Blender and MeshLab): directional light and ambient occlusion.
+    pub const DEFAULT_NAMES: &'static str = "light,occlusion";
+
+    /// The default styles, [`Style::DEFAULT_NAMES`].
+    pub const DEFAULT: Style =
+        Style { linear: false, colour: false, light: true, occlusion: true, stipple: false, regularity: false };
+
     /// Parses a comma-separated list of names ("color" is accepted for "colour").
     pub fn parse(list: &str) -> Result<Style> {
         let mut style = Style::default();
@@ -92,9 +100,9 @@ impl Style {
                 "occlusion" => style.occlusion = true,
                 "stipple" => style.stipple = true,
                 "regularity" => style.regularity = true,
-                other => {
+                _ => {
                     return Err(Error::InvalidArgument(format!(
-                        "unknown style {other:?}; the styles are {}",
+                        "unknown style {name:?}; the styles are {}",
                         Style::NAMES.join(", ")
                     )))
                 }
@@ -197,7 +205,7 @@ pub struct DrawOptions {
 impl Default for DrawOptions {
     fn default() -> Self {
         DrawOptions {
-            style: Style { light: true, occlusion: true, ..Style::default() },
+            style: Style::DEFAULT,
             scale_denominator: 1,
             dpi: 300.0,
             section_angle_rad: None,

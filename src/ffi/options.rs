@@ -724,6 +724,25 @@ pub unsafe extern "C" fn sherd_draw_options_set_views(options: *mut SherdDrawOpt
     })
 }
 
+/// Whether the interior view is drawn between the section and the axis (default true);
+/// the `interior_view` of `sherd draw --interior-view`, Python, Blender and MeshLab.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_draw_options_set_interior_view(options: *mut SherdDrawOptions, interior_view: bool) -> SherdStatus {
+    assign("sherd_draw_options_set_interior_view", options, |o| &mut o.interior_view, || Ok(interior_view))
+}
+
+/// Whether the outer profile is prolonged, dashed, to the full diameter (default true).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_draw_options_set_prolongation(options: *mut SherdDrawOptions, prolongation: bool) -> SherdStatus {
+    assign("sherd_draw_options_set_prolongation", options, |o| &mut o.prolongation, || Ok(prolongation))
+}
+
 /// A title (inventory number...) as a NUL-terminated UTF-8 string; NULL removes it.
 ///
 /// # Safety

@@ -4,6 +4,7 @@
 
 pub mod atomic;
 pub mod decimate;
+pub mod fingerprint;
 pub mod io;
 pub mod normals;
 pub mod occlusion;

@@ -335,6 +335,19 @@ def test_synthetic_sherd(vendored, operators):
         image = bpy.data.images[os.path.basename(png)]
         assert image.size[0] > 50 and image.size[1] > 50, tuple(image.size)
         print(f"  drawings: SVG with {len(list(root.iter()))} elements, PNG {tuple(image.size)}")
+        # Every layout choice under the library's names: the drawing is the one the Python
+        # binding makes with the same options.
+        laid_out = os.path.join(folder, "laid_out.svg")
+        layout = dict(placement="true_distance", section_fill="hatched", interior_view=False, prolongation=False,
+                      title="B7 mm")
+        assert bpy.ops.sherd.draw(filepath=laid_out, style={"linear"}, dpi=60, section_angle_auto=False,
+                                  section_angle_rad=0.03, **layout) == {'FINISHED'}
+        drawn_mesh, _ = operators.library_mesh(obj)
+        expected = vendored.Drawing(drawn_mesh, operators.stored_axis(obj), style=["linear"], dpi=60, section_angle_rad=0.03,
+                                    **layout).to_bytes("svg")
+        with open(laid_out, "rb") as f:
+            assert f.read() == expected, "the panel's layout choices do not reach the library as named"
+        assert b"B7 mm" in expected
         expect_cancelled(operators, lambda: bpy.ops.sherd.draw(filepath=svg, style=set()), "at least one")
         expect_cancelled(operators, lambda: bpy.ops.sherd.draw(filepath=os.path.join(folder, "x.gif")), "sherd")
 

@@ -382,6 +382,8 @@ static void test_refine_measure_draw_misuse(void) {
     CHECK_OK(sherd_draw_options_set_title(draw_options, NULL));
     CHECK_STATUS(sherd_draw_options_set_title(draw_options, "\xff\xfe"), SHERD_STATUS_INVALID_ARGUMENT);
     NULL_ARGUMENT(sherd_draw_options_set_style(NULL, 1u), "options");
+    NULL_ARGUMENT(sherd_draw_options_set_interior_view(NULL, true), "options");
+    NULL_ARGUMENT(sherd_draw_options_set_prolongation(NULL, false), "options");
     NULL_ARGUMENT(sherd_draw_options_new(NULL), "out_options");
 
     CHECK_OK(sherd_measure_options_new(&measure_options));

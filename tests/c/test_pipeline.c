@@ -101,6 +101,9 @@ static void draw(const SherdMesh *mesh, const SherdAxis *axis) {
     CHECK_OK(sherd_draw_options_set_dpi(options, 72.0));
     CHECK_OK(sherd_draw_options_set_section_fill(options, SHERD_SECTION_FILL_HATCHED));
     CHECK_OK(sherd_draw_options_set_title(options, "C99 test sherd"));
+    CHECK_OK(sherd_draw_options_set_placement(options, SHERD_PLACEMENT_TRUE_DISTANCE));
+    CHECK_OK(sherd_draw_options_set_interior_view(options, false));
+    CHECK_OK(sherd_draw_options_set_prolongation(options, true));
     CHECK_OK(sherd_drawing_build(mesh, axis, options, &drawing));
     sherd_draw_options_free(options);
     for (format = SHERD_FORMAT_SVG; format <= SHERD_FORMAT_PNG; ++format) {

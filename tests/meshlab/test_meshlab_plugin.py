@@ -263,6 +263,26 @@ def test_draw_writes_the_illustration(rim_sherd, tmp_path, fmt, suffix):
     assert {"svg": b"<", "pdf": b"%PDF", "png": b"\x89PNG"}[suffix] in head
 
 
+def test_draw_takes_every_layout_choice_under_the_librarys_names(rim_sherd, tmp_path):
+    """placement, section_fill, interior_view, prolongation, title and the section angle
+    reach the library: the drawing changes with each, and the title is in the SVG."""
+    scan, _ = rim_sherd
+    ms = load(scan)
+    drawings = {}
+    choices = {"default": {}, "placement": dict(placement=1), "section_fill": dict(section_fill=1),
+               "interior_view": dict(interior_view=False), "prolongation": dict(prolongation=False),
+               "section_angle": dict(most_informative_section=False, section_angle_deg=3.0),
+               "title": dict(title="M12 mm")}
+    for name, parameters in choices.items():
+        target = tmp_path / f"{name}.svg"
+        ms.apply_filter("sherd_draw", file=str(target), format=0, dpi=40.0, style_occlusion=False, style_light=False,
+                        style_linear=True, **parameters)
+        drawings[name] = target.read_bytes()
+    for name, drawing in drawings.items():
+        assert name == "default" or drawing != drawings["default"], f"{name} did not change the drawing"
+    assert b"M12 mm" in drawings["title"]
+
+
 @pytest.mark.parametrize("name, parameters, message", [
     ("sherd_draw", dict(file="drawing.pdf", format=0), "ends in .pdf but the format is SVG"),
     ("sherd_draw", dict(dpi=1.0), "dpi"),

@@ -153,3 +153,27 @@ def test_analyse_in_memory_matches_the_file(scan, cli_record):
     assert analysis.record["status"] == cli_record["status"]
     for key in FIGURES:
         assert_close(analysis.record[key], cli_record[key], key)
+
+
+def test_drawing_options_have_the_command_lines_names(tmp_path):
+    """``sherd.Drawing``'s layout keywords are ``sherd draw``'s options under the same
+    names (underscores for hyphens): the same options give the same drawing."""
+    mesh, axis, _ = sherd.synthetic_sherd(13, "rim", target_faces=8000)
+    path = tmp_path / "seed13.ply"
+    mesh.write_ply(path)
+    mesh = sherd.Mesh.read(path)
+    axis_file = tmp_path / "axis.json"
+    axis_file.write_text(json.dumps({"point": [float(v) for v in axis.point], "direction": [float(v) for v in axis.direction]}))
+    layout = dict(placement="true_distance", section_fill="hatched", interior_view=False, prolongation=False,
+                  title="Py 13 mm")
+    cli = tmp_path / "cli.svg"
+    arguments = [str(sherd_command()), "draw", str(path), "--axis", str(axis_file), "--style", "linear,light",
+                 "--dpi", "60", "--section-angle", "4", "-o", str(cli)]
+    for name, value in layout.items():
+        arguments += ["--" + name.replace("_", "-"), str(value).lower() if isinstance(value, bool) else value]
+    run = subprocess.run(arguments, capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    drawing = sherd.Drawing(mesh, axis, style="linear,light", dpi=60, section_angle_rad=math.radians(4), **layout)
+    assert cli.read_bytes() == drawing.to_bytes("svg")
+    default = sherd.Drawing(mesh, axis, style="linear,light", dpi=60)
+    assert default.to_bytes("svg") != cli.read_bytes()

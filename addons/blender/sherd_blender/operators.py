@@ -454,6 +454,24 @@ STYLE_ITEMS = [
 ]
 
 
+#: Where the views stand (the library's placement; Python's and the C ABI's names).
+PLACEMENT_ITEMS = [
+    ("beside", "Beside the axis", "The views beside the axis, whatever the true radius"),
+    ("true_distance", "True distance", "The fragment at its true distance from the axis"),
+]
+
+#: How the section is filled (section_fill).
+SECTION_FILL_ITEMS = [
+    ("black", "Black", "Solid black, the usual convention for pottery"),
+    ("hatched", "Hatched", "45-degree hatching"),
+]
+
+#: The drawing's layout choices, as the Draw operator and the panel's settings name them
+#: (the panel's carry a "drawing_" prefix).
+LAYOUT_SETTINGS = ("placement", "section_fill", "interior_view", "prolongation", "title", "section_angle_auto",
+                   "section_angle_rad")
+
+
 def show_image(context, path):
     """Loads a PNG and shows it in an Image Editor of the current screen, if one is open."""
     image = bpy.data.images.load(path, check_existing=False)
@@ -475,8 +493,20 @@ class SHERD_OT_draw(SherdOperator, bpy.types.Operator):
     filepath: bpy.props.StringProperty(name="File", subtype='FILE_PATH', default="//sherd.svg")
     style: bpy.props.EnumProperty(name="Style", items=STYLE_ITEMS, options={'ENUM_FLAG'},
                                   default={"light", "occlusion"})
-    scale_denominator: bpy.props.IntProperty(name="Scale 1:", default=1, min=1, max=1000)
+    scale_denominator: bpy.props.IntProperty(name="Scale 1:", default=1, min=1, max=100)
     dpi: bpy.props.FloatProperty(name="DPI", default=300.0, min=10.0, max=2400.0)
+    placement: bpy.props.EnumProperty(name="Placement", items=PLACEMENT_ITEMS, default="beside")
+    section_fill: bpy.props.EnumProperty(name="Section fill", items=SECTION_FILL_ITEMS, default="black")
+    interior_view: bpy.props.BoolProperty(name="Interior view", default=True,
+                                          description="Draw the interior view between the section and the axis")
+    prolongation: bpy.props.BoolProperty(name="Prolongation", default=True,
+                                         description="Prolong the outer profile, dashed, to the full diameter")
+    title: bpy.props.StringProperty(name="Title", default="", description="A title (inventory number...)")
+    section_angle_auto: bpy.props.BoolProperty(name="Most informative section", default=True,
+                                               description="Cut the most informative profile; off: at Section angle")
+    section_angle_rad: bpy.props.FloatProperty(name="Section angle", subtype='ANGLE', default=0.0,
+                                               min=-math.pi, max=math.pi,
+                                               description="The section's angle about the axis from the fragment's centroid")
 
     def run(self, context):
         obj = active_mesh_object(context)
@@ -490,7 +520,11 @@ class SHERD_OT_draw(SherdOperator, bpy.types.Operator):
             mesh, _ = library_mesh(obj)
             update(1)
             drawing = sherd().Drawing(mesh, axis, style=sorted(self.style),
-                                      scale_denominator=self.scale_denominator, dpi=self.dpi)
+                                      scale_denominator=self.scale_denominator, dpi=self.dpi,
+                                      placement=self.placement, section_fill=self.section_fill,
+                                      interior_view=self.interior_view, prolongation=self.prolongation,
+                                      title=self.title or None,
+                                      section_angle_rad=None if self.section_angle_auto else self.section_angle_rad)
             update(2)
             drawing.write(path)
         if path.lower().endswith(".png"):

@@ -26,8 +26,17 @@ class SherdSettings(bpy.types.PropertyGroup):
     drawing_path: bpy.props.StringProperty(name="File", subtype='FILE_PATH', default="//sherd.svg")
     drawing_style: bpy.props.EnumProperty(name="Style", items=operators.STYLE_ITEMS, options={'ENUM_FLAG'},
                                           default={"light", "occlusion"})
-    drawing_scale_denominator: bpy.props.IntProperty(name="Scale 1:", default=1, min=1, max=1000)
+    drawing_scale_denominator: bpy.props.IntProperty(name="Scale 1:", default=1, min=1, max=100)
     drawing_dpi: bpy.props.FloatProperty(name="DPI", default=300.0, min=10.0, max=2400.0)
+    drawing_placement: bpy.props.EnumProperty(name="Placement", items=operators.PLACEMENT_ITEMS, default="beside")
+    drawing_section_fill: bpy.props.EnumProperty(name="Section fill", items=operators.SECTION_FILL_ITEMS,
+                                                 default="black")
+    drawing_interior_view: bpy.props.BoolProperty(name="Interior view", default=True)
+    drawing_prolongation: bpy.props.BoolProperty(name="Prolongation", default=True)
+    drawing_title: bpy.props.StringProperty(name="Title", default="")
+    drawing_section_angle_auto: bpy.props.BoolProperty(name="Most informative section", default=True)
+    drawing_section_angle_rad: bpy.props.FloatProperty(name="Section angle", subtype='ANGLE', default=0.0,
+                                                       min=-math.pi, max=math.pi)
     reconstruction_segments: bpy.props.IntProperty(name="Segments", default=180, min=3, max=3600)
     regularity_kind: bpy.props.EnumProperty(name="Map", items=operators.REGULARITY_ITEMS, default="ideal_vessel")
 
@@ -152,12 +161,22 @@ class SHERD_PT_panel(bpy.types.Panel):
         box.grid_flow(row_major=True, columns=2, align=True).prop(settings, "drawing_style", expand=True)
         box.prop(settings, "drawing_scale_denominator")
         box.prop(settings, "drawing_dpi")
+        box.prop(settings, "drawing_placement")
+        box.prop(settings, "drawing_section_fill")
+        box.prop(settings, "drawing_interior_view")
+        box.prop(settings, "drawing_prolongation")
+        box.prop(settings, "drawing_title")
+        box.prop(settings, "drawing_section_angle_auto")
+        if not settings.drawing_section_angle_auto:
+            box.prop(settings, "drawing_section_angle_rad")
         box.prop(settings, "drawing_path", text="")
         draw = box.operator(operators.SHERD_OT_draw.bl_idname)
         draw.filepath = settings.drawing_path
         draw.style = settings.drawing_style
         draw.scale_denominator = settings.drawing_scale_denominator
         draw.dpi = settings.drawing_dpi
+        for name in operators.LAYOUT_SETTINGS:
+            setattr(draw, name, getattr(settings, f"drawing_{name}"))
 
         box = layout.box()
         box.label(text="Reconstruction")

@@ -12,8 +12,8 @@ from .options import Options, enum_value, take_buffer
 STYLES = {"linear": 1, "colour": 2, "color": 2, "light": 4, "occlusion": 8, "stipple": 16, "regularity": 32}
 FORMATS = {"svg": 0, "eps": 1, "pdf": 2, "png": 3}
 FILLS = {"black": 0, "hatched": 1}
-PLACEMENTS = {"beside": 0, "true_distance": 1}
-REGULARITY = {"axis_distance": 0, "ideal_vessel": 1}
+PLACEMENTS = {"beside": 0, "true_distance": 1, "true-distance": 1}
+REGULARITY = {"axis_distance": 0, "ideal_vessel": 1, "axis-distance": 0, "ideal-vessel": 1}
 
 
 def _styles(value):
@@ -33,9 +33,15 @@ class Drawing(Handle):
     _kind = "drawing"
 
     def __init__(self, mesh, axis, *, style="light,occlusion", scale_denominator=None, dpi=None,
-                 section_angle_rad=None, section_fill=None, placement=None, regularity=None, title=None):
+                 section_angle_rad=None, section_fill=None, placement=None, regularity=None, title=None,
+                 interior_view=None, prolongation=None):
         """Builds the drawing of ``mesh`` oriented by ``axis``; ``style`` is a list or a
-        comma-separated string of linear, colour, light, occlusion, stipple, regularity."""
+        comma-separated string of linear, colour, light, occlusion, stipple, regularity
+        (the default, light and occlusion, is the library's and ``sherd draw``'s).
+        ``placement`` is beside or true_distance, ``section_fill`` black or hatched,
+        ``interior_view`` and ``prolongation`` True or False, ``section_angle_rad`` the
+        section's angle about the axis (None: the most informative profile); None keeps
+        the library's default."""
         setters = {
             "style": _styles,
             "scale_denominator": int,
@@ -45,9 +51,12 @@ class Drawing(Handle):
             "placement": lambda v: enum_value(PLACEMENTS, v, "placement"),
             "regularity": lambda v: enum_value(REGULARITY, v, "regularity"),
             "title": lambda v: v.encode("utf-8"),
+            "interior_view": bool,
+            "prolongation": bool,
         }
         values = dict(style=style, scale_denominator=scale_denominator, dpi=dpi, section_angle_rad=section_angle_rad,
-                      section_fill=section_fill, placement=placement, regularity=regularity, title=title)
+                      section_fill=section_fill, placement=placement, regularity=regularity, title=title,
+                      interior_view=interior_view, prolongation=prolongation)
         super().__init__(None)
         handle = c.SherdDrawing_p()
         c_axis = axis.to_c()

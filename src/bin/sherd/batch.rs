@@ -19,7 +19,7 @@ use rayon::prelude::*;
 use sherd::mesh::atomic::{write_atomically, write_bytes_atomically};
 use sherd::pipeline::{self, SherdRecord};
 
-use crate::common::{AnalysisArgs, DrawingArgs};
+use crate::common::{AnalysisArgs, DrawingArgs, FormatChoice};
 
 /// Scan file extensions a directory walk picks up.
 const SCAN_EXTENSIONS: [&str; 5] = ["ply", "obj", "stl", "xyz", "pts"];
@@ -51,6 +51,9 @@ pub struct BatchArgs {
     pub analysis: AnalysisArgs,
     #[command(flatten)]
     pub drawing: DrawingArgs,
+    /// Format of the drawings.
+    #[arg(long, value_enum, default_value = "svg")]
+    pub format: FormatChoice,
 }
 
 pub fn run(args: BatchArgs) -> Result<ExitCode, String> {
@@ -75,7 +78,7 @@ pub fn run(args: BatchArgs) -> Result<ExitCode, String> {
         .map_err(|e| format!("cannot start {} jobs: {e}", args.jobs.unwrap_or(0)))?;
     let options = args.analysis.pipeline_options()?;
     let draw_options = args.drawing.draw_options()?;
-    let extension = args.drawing.format_extension();
+    let extension = args.format.extension();
     let started = Instant::now();
     pool.install(|| {
         pending.par_iter().for_each(|&i| {

@@ -5,7 +5,8 @@ use std::path::Path;
 
 use clap::{Args, ValueEnum};
 
-use sherd::draw::{DrawOptions, Style};
+use sherd::draw::{DrawOptions, Placement, RegularityKind, SectionFill, Style};
+use sherd::mesh::fingerprint::ScanFingerprint;
 use sherd::mesh::Point;
 use sherd::orient::{Axis, AxisRecord};
 use sherd::pipeline::PipelineOptions;
@@ -245,9 +246,18 @@ pub fn parse_three_points(text: &str) -> Result<[Point; 3], String> {
     Ok(parsed)
 }
 
+/// An axis read from a file, with the scan it was found on when the file records it.
+pub struct AxisFile {
+    /// The axis, in millimetres.
+    pub axis: Axis,
+    /// The fingerprint of the scan the axis was found on (`"scan"` of `sherd orient
+    /// --json`), when the file has one.
+    pub scan: Option<ScanFingerprint>,
+}
+
 /// Reads an axis written by `sherd orient --json` (or any JSON object with `axis` or
 /// `point` + `direction`), in the scan's units, and brings it to millimetres.
-pub fn read_axis(path: &Path, millimetres_per_unit: f64) -> Result<Axis, String> {
+pub fn read_axis(path: &Path, millimetres_per_unit: f64) -> Result<AxisFile, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let value: serde_json::Value =
         serde_json::from_str(&text).map_err(|e| format!("{}: not JSON: {e}", path.display()))?;
@@ -264,41 +274,178 @@ pub fn read_axis(path: &Path, millimetres_per_unit: f64) -> Result<Axis, String>
         .map_err(|e| format!("{}: no axis {{\"point\": [x,y,z], \"direction\": [dx,dy,dz]}}: {e}", path.display()))?;
     let axis = Axis::from_record(&record)
         .ok_or_else(|| format!("{}: the axis direction is zero or not finite", path.display()))?;
-    Ok(Axis { point: Point::from(axis.point.coords * millimetres_per_unit), direction: axis.direction })
+    let scan = match value.get("scan") {
+        None | Some(serde_json::Value::Null) => None,
+        Some(scan) => Some(
+            serde_json::from_value(scan.clone())
+                .map_err(|e| format!("{}: \"scan\" is not {{\"vertices\", \"faces\", \"checksum\"}}: {e}", path.display()))?,
+        ),
+    };
+    Ok(AxisFile { axis: Axis { point: Point::from(axis.point.coords * millimetres_per_unit), direction: axis.direction }, scan })
 }
 
-/// How a sherd is drawn.
+/// Farthest an axis may pass from the nearest point of its sherd, mm: the radius of the
+/// largest vessels (storage jars reach 1.5 m across) with a wide margin.
+const MAX_AXIS_DISTANCE_MM: f64 = 1500.0;
+
+/// Refuses an axis found on another scan: its recorded fingerprint differs from `scan`'s,
+/// or (with no fingerprint) it passes farther from every point than any vessel's radius.
+fn check_axis_fits(axis_file: &Path, scan_file: &Path, read: &AxisFile, mesh: &sherd::mesh::Mesh, millimetres_per_unit: f64) -> Result<(), String> {
+    if let Some(recorded) = &read.scan {
+        if let Some(difference) = recorded.difference(&ScanFingerprint::of(mesh)) {
+            return Err(format!(
+                "{}: the axis was found on another scan than {} ({difference}); orient this scan, or give its own axis file",
+                axis_file.display(),
+                scan_file.display()
+            ));
+        }
+    }
+    let axis = &read.axis;
+    let nearest = mesh
+        .positions
+        .iter()
+        .map(|p| axis.distance_to(&Point::from(p.coords * millimetres_per_unit)))
+        .fold(f64::INFINITY, f64::min);
+    if nearest > MAX_AXIS_DISTANCE_MM {
+        return Err(format!(
+            "{}: the axis passes {:.0} mm from the nearest point of {}, farther than any vessel's radius ({MAX_AXIS_DISTANCE_MM:.0} mm): is it the axis of another scan, or in other units?",
+            axis_file.display(),
+            nearest,
+            scan_file.display()
+        ));
+    }
+    Ok(())
+}
+
+/// Where the views stand relative to the axis (the library's `Placement`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PlacementChoice {
+    /// Beside the axis, whatever the true radius (the paper's Fig. 4:a).
+    Beside,
+    /// At the fragment's true distance from the axis (Fig. 4:b).
+    #[value(alias = "true_distance")]
+    TrueDistance,
+}
+
+/// How the section is filled (the library's `SectionFill`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SectionFillChoice {
+    /// Solid black, the usual convention for pottery.
+    Black,
+    /// 45-degree hatching.
+    Hatched,
+}
+
+/// The map the regularity style shows (the library's `RegularityKind`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum RegularityChoice {
+    /// Distance of each point to the axis.
+    #[value(alias = "axis_distance")]
+    AxisDistance,
+    /// Distance to the ideal vessel revolved from the section.
+    #[value(alias = "ideal_vessel")]
+    IdealVessel,
+}
+
+/// A section angle in degrees: a finite number.
+fn parse_degrees(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(value) if value.is_finite() => Ok(value),
+        _ => Err(format!("{text:?} is not a finite number of degrees")),
+    }
+}
+
+/// How a sherd is drawn: every layout choice of the library's `DrawOptions`, under the
+/// names of the C ABI and Python (`section_fill`, `placement`, `interior_view`,
+/// `prolongation`, `title`, `section_angle`, `regularity`), hyphenated.
 #[derive(Args, Debug, Clone)]
 pub struct DrawingArgs {
     /// Rendering styles, combinable: linear, colour, light, occlusion, stipple, regularity.
-    #[arg(long, default_value = "linear,light")]
+    /// The default is the library's, the C ABI's, Python's and the add-ons'.
+    #[arg(long, default_value = Style::DEFAULT_NAMES)]
     pub style: String,
-    /// Publication scale: 1 for 1:1, 2 for 1:2, 3 for 1:3...
+    /// Publication scale: 1 for 1:1, 2 for 1:2, 3 for 1:3... (1 to 100).
     #[arg(long, default_value_t = 1)]
     pub scale: u32,
     /// Resolution of PNG output (and of raster styles inside vector files), dots per inch.
     #[arg(long, default_value_t = 300.0)]
     pub dpi: f64,
-    /// Drawing format for `batch` (for `draw`, the output's extension decides).
-    #[arg(long, default_value = "svg", value_parser = ["svg", "eps", "pdf", "png"])]
-    pub format: String,
+    /// Where the views stand: beside the axis, or turned about it to the fragment's true
+    /// distance.
+    #[arg(long, value_enum, default_value = "beside")]
+    pub placement: PlacementChoice,
+    /// How the section is filled.
+    #[arg(long, value_enum, default_value = "black")]
+    pub section_fill: SectionFillChoice,
+    /// Draw the interior view between the section and the axis (true or false).
+    #[arg(long, value_name = "BOOL", default_value_t = true, action = clap::ArgAction::Set)]
+    pub interior_view: bool,
+    /// Prolong the outer profile, dashed, to the full diameter (true or false).
+    #[arg(long, value_name = "BOOL", default_value_t = true, action = clap::ArgAction::Set)]
+    pub prolongation: bool,
+    /// A title above the drawing (inventory number...).
+    #[arg(long, value_name = "TEXT")]
+    pub title: Option<String>,
+    /// The angle of the section about the axis, degrees from the fragment's centroid.
+    /// Without it, the most informative profile is cut.
+    #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = parse_degrees)]
+    pub section_angle: Option<f64>,
+    /// The map the regularity style shows.
+    #[arg(long, value_enum, default_value = "ideal-vessel")]
+    pub regularity: RegularityChoice,
 }
 
 impl DrawingArgs {
     /// The library's drawing options, checked.
     pub fn draw_options(&self) -> Result<DrawOptions, String> {
-        let style = Style::parse(&self.style).map_err(|e| e.to_string())?;
-        let options = DrawOptions { style, scale_denominator: self.scale, dpi: self.dpi, ..Default::default() };
+        let style = Style::parse(&self.style).map_err(|e| format!("--style: {e}"))?;
+        let options = DrawOptions {
+            style,
+            scale_denominator: self.scale,
+            dpi: self.dpi,
+            placement: match self.placement {
+                PlacementChoice::Beside => Placement::Beside,
+                PlacementChoice::TrueDistance => Placement::TrueDistance,
+            },
+            section_fill: match self.section_fill {
+                SectionFillChoice::Black => SectionFill::Black,
+                SectionFillChoice::Hatched => SectionFill::Hatched,
+            },
+            interior_view: self.interior_view,
+            prolongation: self.prolongation,
+            title: self.title.clone(),
+            section_angle_rad: self.section_angle.map(f64::to_radians),
+            regularity: match self.regularity {
+                RegularityChoice::AxisDistance => RegularityKind::AxisDistance,
+                RegularityChoice::IdealVessel => RegularityKind::IdealVessel,
+            },
+            ..Default::default()
+        };
         options.check().map_err(|e| e.to_string())?;
         Ok(options)
     }
-
-    /// Extension of batch drawings.
-    pub fn format_extension(&self) -> &str {
-        &self.format
-    }
 }
 
+/// Drawing format of `batch` (`draw` takes it from the output's extension).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum FormatChoice {
+    Svg,
+    Eps,
+    Pdf,
+    Png,
+}
+
+impl FormatChoice {
+    /// The file extension of this format.
+    pub fn extension(self) -> &'static str {
+        match self {
+            FormatChoice::Svg => "svg",
+            FormatChoice::Eps => "eps",
+            FormatChoice::Pdf => "pdf",
+            FormatChoice::Png => "png",
+        }
+    }
+}
 
 /// A record as the few lines an archaeologist reads.
 pub fn describe(record: &sherd::pipeline::SherdRecord) -> String {
@@ -418,9 +565,11 @@ pub fn analyse_or_read_axis(scan: &Path, axis_file: Option<&Path>, analysis: &An
     let millimetres_per_unit = options.scale();
     match axis_file {
         Some(axis_file) => {
-            let axis = read_axis(axis_file, millimetres_per_unit)?;
+            let read = read_axis(axis_file, millimetres_per_unit)?;
             let mut mesh = mesh;
             mesh.validate().map_err(|e| format!("{}: {e}", scan.display()))?;
+            check_axis_fits(axis_file, scan, &read, &mesh, millimetres_per_unit)?;
+            let axis = read.axis;
             for p in &mut mesh.positions {
                 p.coords *= millimetres_per_unit;
             }

@@ -6,17 +6,22 @@ use std::process::ExitCode;
 
 use clap::Args;
 
-use sherd::draw::Drawing;
+use sherd::draw::{Drawing, Format};
 
 use crate::common::{analyse_or_read_axis, AnalysisArgs, DrawingArgs};
 
 #[derive(Args, Debug)]
 #[command(
     about = "Draw a sherd as an archaeological illustration (section left of the axis, exterior right)",
-    after_help = "Examples:\n  sherd draw A011.ply -o A011.svg\n  sherd draw A011.ply --style linear,occlusion,stipple -o A011.pdf --scale 2   # 1:2\n  sherd draw A011.ply --style colour,light -o A011.png --dpi 600\n  sherd orient A011.ply --json > axis.json && sherd draw A011.ply --axis axis.json -o A011.eps\n  sherd draw A011.ply -o A011.svg --json    # also prints the axis and measurements\n\n\
+    after_help = "Examples:\n  sherd draw A011.ply -o A011.svg\n  sherd draw A011.ply --style linear,occlusion,stipple -o A011.pdf --scale 2   # 1:2\n  sherd draw A011.ply --style colour,light -o A011.png --dpi 600\n  sherd orient A011.ply --json > axis.json && sherd draw A011.ply --axis axis.json -o A011.eps\n  sherd draw A011.ply -o A011.svg --json    # also prints the axis and measurements\n  sherd draw A011.ply -o A011.pdf --placement true-distance --section-fill hatched --title A011\n\n\
 Styles combine: linear (outlines), colour (vertex colours or texture), light\n\
 (directional), occlusion (ambient occlusion), stipple (dots), regularity (distance to\n\
-the ideal vessel, with a legend). The output's extension picks the format."
+the ideal vessel, with a legend); the default, light,occlusion, is the library's.\n\
+The layout: --placement beside|true-distance, --section-fill black|hatched,\n\
+--interior-view true|false, --prolongation true|false, --title TEXT, --section-angle DEG\n\
+(the names of the C ABI's and Python's options). The output's extension picks the format:\n\
+.svg, .eps, .pdf or .png. An --axis file from `sherd orient --json` records the scan it was\n\
+found on; an axis of another scan is refused."
 )]
 pub struct DrawArgs {
     /// The scan: .ply, .obj, .stl, .xyz or .pts.
@@ -38,6 +43,8 @@ pub struct DrawArgs {
 }
 
 pub fn run(args: DrawArgs) -> Result<ExitCode, String> {
+    // Bad arguments are refused before the scan is read and oriented.
+    Format::from_path(&args.output).map_err(|e| e.to_string())?;
     let draw_options = args.drawing.draw_options()?;
     let mut oriented = analyse_or_read_axis(&args.scan, args.axis.as_deref(), &args.analysis)?;
     let draw_options = sherd::draw::DrawOptions { measurements: oriented.measurements.take(), ..draw_options };

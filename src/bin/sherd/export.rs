@@ -21,8 +21,10 @@ const REVOLUTION_SEGMENTS: usize = 180;
 #[command(
     about = "Write the oriented model, the reconstruction by revolution, the profile or the regularity map",
     after_help = "Examples:\n  sherd export A011.ply --oriented A011.oriented.ply\n  sherd export A011.ply --reconstruction vessel.ply --profile profile.csv\n  sherd orient A011.ply --json > axis.json && sherd export A011.ply --axis axis.json --regularity regularity.ply\n  sherd export A011.ply --oriented o.ply --json    # also prints the axis and measurements\n\n\
-The oriented model has the axis on z, rim up, in millimetres. The profile CSV lists\n\
-r_mm,z_mm per point of each curve of the section through the axis."
+The oriented model has the axis on z, rim up, in millimetres. The profile CSV has the\n\
+columns curve,index,r_mm,z_mm,closed: one row per point of each curve of the section\n\
+through the axis (curve number, point number along it, radius and height in mm, and\n\
+whether the curve is a closed loop)."
 )]
 pub struct ExportArgs {
     /// The scan: .ply, .obj, .stl, .xyz or .pts.
@@ -36,7 +38,7 @@ pub struct ExportArgs {
     /// The whole vessel revolved from the profile (PLY, watertight).
     #[arg(long, value_name = "OUT.ply")]
     pub reconstruction: Option<PathBuf>,
-    /// The profile section through the axis (CSV: curve,r_mm,z_mm).
+    /// The profile section through the axis (CSV: curve,index,r_mm,z_mm,closed).
     #[arg(long, value_name = "OUT.csv")]
     pub profile: Option<PathBuf>,
     /// Distance to the ideal vessel as vertex quality and colours (PLY, oriented).
