@@ -454,6 +454,37 @@ typedef uint32_t SherdStyle;
 #endif // __cplusplus
 
 /**
+ * The measurements written under the drawing, combined as bits for
+ * `sherd_draw_options_set_annotations` (the `annotations` of `sherd draw --annotations`,
+ * Python, Blender and MeshLab). The diameters and the preserved share are always written.
+ */
+enum SherdAnnotation
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * The preserved height along the axis.
+   */
+  SHERD_ANNOTATION_HEIGHT = 1,
+  /**
+   * The median wall thickness.
+   */
+  SHERD_ANNOTATION_WALL_THICKNESS = 2,
+  /**
+   * The capacity, litres (only where the profile runs from base to rim).
+   */
+  SHERD_ANNOTATION_CAPACITY = 4,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdAnnotation SherdAnnotation;
+#else
+typedef uint32_t SherdAnnotation;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
  * How the section is filled (`sherd_draw_options_set_section_fill`).
  */
 enum SherdSectionFill
@@ -1695,6 +1726,16 @@ SherdStatus sherd_draw_options_set_interior_view(SherdDrawOptions *options, bool
  * `options` must be a live handle.
  */
 SherdStatus sherd_draw_options_set_prolongation(SherdDrawOptions *options, bool prolongation);
+
+/**
+ * The measurements written under the drawing: a bitwise or of `SHERD_ANNOTATION_*`
+ * values, 0 for none (the default). Each is left out where it was not measured. Other
+ * bits are refused and leave the options as they were.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_annotations(SherdDrawOptions *options, uint32_t annotations);
 
 /**
  * A title (inventory number...) as a NUL-terminated UTF-8 string; NULL removes it.

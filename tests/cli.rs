@@ -161,6 +161,34 @@ fn orient_json_gives_the_axis_base_to_rim_and_the_rim_radius() {
     assert!(notes.iter().any(|n| n.contains("no base diameter")), "{notes:?}");
 }
 
+/// `sherd orient`'s text for a user: a body sherd says why it has no rim diameter (the
+/// record's notes, each on its own line, as the JSON gives them), and a rim sherd gives its
+/// rim's own arc as a share of the rim beside the sector.
+#[test]
+fn orient_text_says_what_could_not_be_measured_and_the_rims_own_arc() {
+    let dir = tempfile::tempdir().unwrap();
+    let body = synth(&dir.path().join("body"), &["--part", "body", "--faces", "20000", "--seed", "5"]);
+    let output = sherd().arg("orient").arg(&body[0]).output().unwrap();
+    assert!(output.status.success(), "sherd orient failed: {}", String::from_utf8_lossy(&output.stderr));
+    let text = String::from_utf8(output.stdout).unwrap();
+    assert!(text.contains("\n  note: no level rim preserved: no rim diameter\n"), "{text}");
+    assert!(!text.contains("rim diameter:") && !text.contains("of the rim"), "a body sherd has no rim: {text}");
+    let json = orient_json(&body[0], &[]);
+    let notes = json["notes"].as_array().unwrap();
+    for note in notes {
+        assert!(text.contains(&format!("  note: {}\n", note.as_str().unwrap())), "{note} is not in the text: {text}");
+    }
+    assert_eq!(text.matches("  note: ").count(), notes.len(), "{text}");
+
+    let rim = synth(&dir.path().join("rim"), &["--seed", "13", "--part", "rim", "--faces", "30000"]);
+    let output = sherd().arg("orient").arg(&rim[0]).output().unwrap();
+    assert!(output.status.success(), "sherd orient failed: {}", String::from_utf8_lossy(&output.stderr));
+    let text = String::from_utf8(output.stdout).unwrap();
+    let arc = orient_json(&rim[0], &[])["rim_sector_deg"].as_f64().expect("a rim sherd has a rim arc");
+    let line = text.lines().find(|l| l.starts_with("  preserved sector: ")).unwrap_or_else(|| panic!("{text}"));
+    assert!(line.ends_with(&format!("; rim arc: {arc:.1} deg ({:.1}% of the rim)", arc / 3.6)), "{line}");
+}
+
 #[test]
 fn units_from_the_option_or_the_file_keep_the_axis_in_the_file_units_and_report_millimetres() {
     let dir = tempfile::tempdir().unwrap();

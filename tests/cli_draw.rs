@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use assert_cmd::Command;
 
-use sherd::draw::{DrawOptions, Drawing, Placement, SectionFill, Style};
+use sherd::draw::{Annotations, DrawOptions, Drawing, Placement, SectionFill, Style};
 use sherd::orient::{Axis, AxisRecord};
 
 fn sherd() -> Command {
@@ -55,7 +55,7 @@ fn every_layout_choice_reaches_the_library_under_its_name() {
         .arg(&truth)
         .args(["--style", "linear,light", "--placement", "true-distance", "--section-fill", "hatched"])
         .args(["--interior-view", "false", "--prolongation", "false", "--title", "Inv. 7/12: 5 mm", "--section-angle", "-2"])
-        .args(["--dpi", "60"])
+        .args(["--dpi", "60", "--annotations", "height,wall-thickness"])
         .arg("-o")
         .arg(&cli_svg)
         .output()
@@ -72,6 +72,7 @@ fn every_layout_choice_reaches_the_library_under_its_name() {
         section_fill: SectionFill::Hatched,
         interior_view: false,
         prolongation: false,
+        annotations: Annotations { height: true, wall_thickness: true, capacity: false },
         title: Some("Inv. 7/12: 5 mm".into()),
         section_angle_rad: Some((-2f64).to_radians()),
         dpi: 60.0,
@@ -87,6 +88,9 @@ fn every_layout_choice_reaches_the_library_under_its_name() {
         .unwrap();
     assert!(default_svg != cli);
     assert!(String::from_utf8_lossy(&cli).contains("Inv. 7/12: 5 mm"), "the title is in the SVG");
+    let text = String::from_utf8_lossy(&cli);
+    assert!(text.contains(">height ") && text.contains(">wall "), "the annotations asked for are in the SVG");
+    assert!(!String::from_utf8_lossy(&default_svg).contains(">height "), "no annotation by default");
 }
 
 #[test]
@@ -101,13 +105,26 @@ fn the_command_line_default_style_is_the_librarys() {
         .unwrap_or_else(|| panic!("no default style in draw --help: {help}"));
     assert_eq!(Style::parse(default).unwrap(), DrawOptions::default().style, "draw --help's default {default:?}");
     assert_eq!(default, Style::DEFAULT_NAMES);
-    for name in ["--placement", "beside", "true-distance", "--section-fill", "hatched", "--interior-view", "--title", "--section-angle"] {
+    for name in ["--placement", "beside", "true-distance", "--section-fill", "hatched", "--interior-view", "--title", "--section-angle", "--annotations", "wall_thickness", "capacity"] {
         assert!(help.contains(name), "draw --help lacks {name}");
     }
     // The format is the output's extension: --format belongs to batch alone.
     assert!(!help.contains("--format"), "draw --help lists --format");
     let batch_help = String::from_utf8_lossy(&sherd().args(["batch", "--help"]).output().unwrap().stdout).into_owned();
     assert!(batch_help.contains("--format") && batch_help.contains("--placement"), "{batch_help}");
+    assert!(batch_help.contains("--annotations <LIST>") && batch_help.contains("[default: none]"), "{batch_help}");
+}
+
+#[test]
+fn annotation_lists_parse_by_name_all_and_none() {
+    assert_eq!(Annotations::parse("all").unwrap(), Annotations::ALL);
+    assert_eq!(Annotations::parse("none").unwrap(), Annotations::default());
+    assert_eq!(Annotations::parse(" Capacity , wall-thickness").unwrap(), Annotations { height: false, wall_thickness: true, capacity: true });
+    assert_eq!(Annotations::parse(&Annotations::NAMES.join(",")).unwrap(), Annotations::ALL);
+    for (bad, says) in [("height,volume", "\"volume\""), ("", "no annotation"), (" , ", "no annotation"), ("all,height", "\"all\""), ("height,none", "\"none\"")] {
+        let message = Annotations::parse(bad).unwrap_err().to_string();
+        assert!(message.contains(says) && message.contains("wall_thickness"), "{bad:?}: {message}");
+    }
 }
 
 #[test]
@@ -160,6 +177,8 @@ fn bad_input_to_draw_is_a_clear_error_naming_the_file_or_value() {
     assert!(stderr.contains("out.jpg"), "{stderr}");
     let stderr = fails(&[os("draw"), rim.as_os_str(), os("--placement"), os("far"), os("-o"), out.as_os_str()]);
     assert!(stderr.contains("far") && stderr.contains("true-distance"), "{stderr}");
+    let stderr = fails(&[os("draw"), rim.as_os_str(), os("--annotations"), os("height,volume"), os("-o"), out.as_os_str()]);
+    assert!(stderr.contains("--annotations") && stderr.contains("\"volume\"") && stderr.contains("capacity"), "{stderr}");
     let stderr = fails(&[os("draw"), rim.as_os_str(), os("--format"), os("png"), os("-o"), out.as_os_str()]);
     assert!(stderr.contains("--format"), "{stderr}");
     assert!(!out.with_extension("png").exists());
@@ -176,6 +195,7 @@ fn batch_draws_with_the_layout_options_in_the_format_asked() {
         .arg("-o")
         .arg(&results)
         .args(["--format", "png", "--dpi", "50", "--section-fill", "hatched", "--placement", "true-distance", "--title", "R4"])
+        .args(["--annotations", "all"])
         .output()
         .unwrap();
     let stderr = String::from_utf8_lossy(&output.stderr);

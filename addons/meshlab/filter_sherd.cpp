@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <optional>
 
@@ -438,6 +439,16 @@ std::map<std::string, QVariant> measure(MeshModel& model, const RichParameterLis
 	};
 }
 
+/// The or of the C ABI bits whose check boxes are ticked.
+std::uint32_t tickedBits(const RichParameterList& parameters,
+                         std::initializer_list<std::pair<const char*, std::uint32_t>> boxes)
+{
+	std::uint32_t bits = 0;
+	for (const auto& [name, bit] : boxes)
+		if (parameters.getBool(name)) bits |= bit;
+	return bits;
+}
+
 std::map<std::string, QVariant> draw(MeshModel& model, const RichParameterList& parameters,
                                      const FilterPlugin& logger)
 {
@@ -450,13 +461,15 @@ std::map<std::string, QVariant> draw(MeshModel& model, const RichParameterList& 
 	if (extension.isEmpty()) path += "." + formatExtensions[format];
 	else if (extension != formatExtensions[format])
 		throw MLException(QString("Sherd: the file %1 ends in .%2 but the format is %3.").arg(path, extension, formats[format]));
-	const std::pair<const char*, std::uint32_t> styleBits[] = {
+	std::uint32_t styles = tickedBits(parameters, {
 		{"style_linear", SHERD_STYLE_LINEAR}, {"style_colour", SHERD_STYLE_COLOUR},
 		{"style_light", SHERD_STYLE_LIGHT},   {"style_occlusion", SHERD_STYLE_OCCLUSION},
-		{"style_stipple", SHERD_STYLE_STIPPLE}, {"style_regularity", SHERD_STYLE_REGULARITY}};
-	std::uint32_t styles = 0;
-	for (const auto& [name, bit] : styleBits)
-		if (parameters.getBool(name)) styles |= bit;
+		{"style_stipple", SHERD_STYLE_STIPPLE}, {"style_regularity", SHERD_STYLE_REGULARITY}});
+	// The annotations' check boxes: annotations_<name>, the names of `sherd draw --annotations`.
+	std::uint32_t annotations = tickedBits(parameters, {
+		{"annotations_height", SHERD_ANNOTATION_HEIGHT},
+		{"annotations_wall_thickness", SHERD_ANNOTATION_WALL_THICKNESS},
+		{"annotations_capacity", SHERD_ANNOTATION_CAPACITY}});
 	int scale = parameters.getInt("scale_denominator");
 	if (scale < 1) throw MLException(QString("Sherd: scale 1:%1 is not a scale (1 to 100).").arg(scale));
 
@@ -472,6 +485,7 @@ std::map<std::string, QVariant> draw(MeshModel& model, const RichParameterList& 
 	sherd::check(sherd_draw_options_set_section_fill(options.get(), std::uint32_t(parameters.getEnum("section_fill"))));
 	sherd::check(sherd_draw_options_set_interior_view(options.get(), parameters.getBool("interior_view")));
 	sherd::check(sherd_draw_options_set_prolongation(options.get(), parameters.getBool("prolongation")));
+	sherd::check(sherd_draw_options_set_annotations(options.get(), annotations));
 	QByteArray title = parameters.getString("title").toUtf8();
 	if (!title.isEmpty()) sherd::check(sherd_draw_options_set_title(options.get(), title.constData()));
 	SherdDrawing* drawing = nullptr;
@@ -775,6 +789,11 @@ RichParameterList FilterSherdPlugin::initParameterList(const QAction* action, co
 		                       "The section filled black (the usual convention) or hatched at 45 degrees."));
 		list.addParam(RichBool("interior_view", true, "Interior view", "Draw the interior view between the section and the axis."));
 		list.addParam(RichBool("prolongation", true, "Prolongation", "Prolong the outer profile, dashed, to the full diameter."));
+		list.addParam(RichBool("annotations_height", false, "Annotate the height", "Write the preserved height under the drawing."));
+		list.addParam(RichBool("annotations_wall_thickness", false, "Annotate the wall thickness",
+		                       "Write the median wall thickness under the drawing."));
+		list.addParam(RichBool("annotations_capacity", false, "Annotate the capacity",
+		                       "Write the capacity under the drawing (where the profile runs from base to rim)."));
 		list.addParam(RichString("title", QString(), "Title", "A title (inventory number...) printed on the drawing."));
 		addSectionParameters(list);
 		break;

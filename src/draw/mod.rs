@@ -158,6 +158,43 @@ pub struct Annotations {
 impl Annotations {
     /// Every annotation.
     pub const ALL: Annotations = Annotations { height: true, wall_thickness: true, capacity: true };
+
+    /// The annotation names, as `sherd draw --annotations`, Python and the add-ons take
+    /// them (the command line also accepts hyphens: `wall-thickness`).
+    pub const NAMES: [&'static str; 3] = ["height", "wall_thickness", "capacity"];
+
+    /// Parses a comma-separated list of names, or `all`, or `none` (no annotation, the
+    /// default). An empty list is refused: `none` says it.
+    pub fn parse(list: &str) -> Result<Annotations> {
+        let names: Vec<String> = list
+            .split(',')
+            .map(|n| n.trim().to_ascii_lowercase().replace('-', "_"))
+            .filter(|n| !n.is_empty())
+            .collect();
+        let choices = || format!("{}, or all, or none", Annotations::NAMES.join(", "));
+        match names.iter().map(String::as_str).collect::<Vec<_>>()[..] {
+            [] => return Err(Error::InvalidArgument(format!("no annotation given; choose among {}", choices()))),
+            ["all"] => return Ok(Annotations::ALL),
+            ["none"] => return Ok(Annotations::default()),
+            _ => {}
+        }
+        let mut annotations = Annotations::default();
+        for name in &names {
+            match name.as_str() {
+                "height" => annotations.height = true,
+                "wall_thickness" => annotations.wall_thickness = true,
+                "capacity" => annotations.capacity = true,
+                "all" | "none" => {
+                    return Err(Error::InvalidArgument(format!(
+                        "{name:?} cannot be combined with other annotations; give {}",
+                        choices()
+                    )))
+                }
+                _ => return Err(Error::InvalidArgument(format!("unknown annotation {name:?}; the annotations are {}", choices()))),
+            }
+        }
+        Ok(annotations)
+    }
 }
 
 /// Settings of [`Drawing::build`].

@@ -8,7 +8,7 @@ use super::panic::guard;
 use super::pointers::{borrow, borrow_mut, require, write_out};
 use super::status::SherdStatus;
 use super::refine::{SherdCircleFit, SherdCriterion, SherdEdge, SherdParetoChoice, SherdProfileMethod, SherdSurface};
-use crate::draw::{DrawOptions, Placement, RegularityKind, SectionFill, Style};
+use crate::draw::{Annotations, DrawOptions, Placement, RegularityKind, SectionFill, Style};
 use crate::mesh::repair::RepairOptions;
 use crate::orient::{ManualOptions, OrientOptions};
 use crate::profile::measure::MeasureOptions;
@@ -542,6 +542,20 @@ pub enum SherdStyle {
     Regularity = 32,
 }
 
+/// The measurements written under the drawing, combined as bits for
+/// `sherd_draw_options_set_annotations` (the `annotations` of `sherd draw --annotations`,
+/// Python, Blender and MeshLab). The diameters and the preserved share are always written.
+#[repr(u32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SherdAnnotation {
+    /// The preserved height along the axis.
+    Height = 1,
+    /// The median wall thickness.
+    WallThickness = 2,
+    /// The capacity, litres (only where the profile runs from base to rim).
+    Capacity = 4,
+}
+
 /// How the section is filled (`sherd_draw_options_set_section_fill`).
 #[repr(u32)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -581,6 +595,16 @@ impl SherdRegularity {
             other => Err(Failure::invalid(format!("`regularity` {other} is not a SHERD_REGULARITY_* value (0 or 1)"))),
         }
     }
+}
+
+/// `value` checked as a combination of the bits in `all` (named `prefix`*), and non-empty
+/// unless `empty_allowed`: a bit outside them would be no choice of the library's.
+fn flags(name: &str, value: u32, all: u32, prefix: &str, empty_allowed: bool) -> FfiResult<u32> {
+    if (value == 0 && !empty_allowed) || value & !all != 0 {
+        let kind = if empty_allowed { "a combination (0 for none)" } else { "a non-empty combination" };
+        return Err(Failure::invalid(format!("`{name}` {value:#x} must be {kind} of {prefix}* bits (mask {all:#x})")));
+    }
+    Ok(value)
 }
 
 /// Applies `change` to a copy of the drawing options and keeps it only when the drawing
@@ -623,13 +647,8 @@ pub unsafe extern "C" fn sherd_draw_options_free(options: *mut SherdDrawOptions)
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_draw_options_set_style(options: *mut SherdDrawOptions, styles: u32) -> SherdStatus {
     assign("sherd_draw_options_set_style", options, |o| &mut o.style, || {
-        const ALL: u32 = 63;
-        if styles == 0 || styles & !ALL != 0 {
-            return Err(Failure::invalid(format!(
-                "`styles` {styles:#x} must be a non-empty combination of SHERD_STYLE_* bits (mask {ALL:#x})"
-            )));
-        }
-        let has = |style: SherdStyle| styles & style as u32 != 0;
+        let bits = flags("styles", styles, 63, "SHERD_STYLE_", false)?;
+        let has = |style: SherdStyle| bits & style as u32 != 0;
         Ok(Style {
             linear: has(SherdStyle::Linear),
             colour: has(SherdStyle::Colour),
@@ -741,6 +760,25 @@ pub unsafe extern "C" fn sherd_draw_options_set_interior_view(options: *mut Sher
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn sherd_draw_options_set_prolongation(options: *mut SherdDrawOptions, prolongation: bool) -> SherdStatus {
     assign("sherd_draw_options_set_prolongation", options, |o| &mut o.prolongation, || Ok(prolongation))
+}
+
+/// The measurements written under the drawing: a bitwise or of `SHERD_ANNOTATION_*`
+/// values, 0 for none (the default). Each is left out where it was not measured. Other
+/// bits are refused and leave the options as they were.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_draw_options_set_annotations(options: *mut SherdDrawOptions, annotations: u32) -> SherdStatus {
+    assign("sherd_draw_options_set_annotations", options, |o| &mut o.annotations, || {
+        let bits = flags("annotations", annotations, 7, "SHERD_ANNOTATION_", true)?;
+        let has = |annotation: SherdAnnotation| bits & annotation as u32 != 0;
+        Ok(Annotations {
+            height: has(SherdAnnotation::Height),
+            wall_thickness: has(SherdAnnotation::WallThickness),
+            capacity: has(SherdAnnotation::Capacity),
+        })
+    })
 }
 
 /// A title (inventory number...) as a NUL-terminated UTF-8 string; NULL removes it.

@@ -341,13 +341,15 @@ def test_synthetic_sherd(vendored, operators):
         layout = dict(placement="true_distance", section_fill="hatched", interior_view=False, prolongation=False,
                       title="B7 mm")
         assert bpy.ops.sherd.draw(filepath=laid_out, style={"linear"}, dpi=60, section_angle_auto=False,
-                                  section_angle_rad=0.03, **layout) == {'FINISHED'}
+                                  section_angle_rad=0.03, annotations={"height", "wall_thickness"},
+                                  **layout) == {'FINISHED'}
         drawn_mesh, _ = operators.library_mesh(obj)
         expected = vendored.Drawing(drawn_mesh, operators.stored_axis(obj), style=["linear"], dpi=60, section_angle_rad=0.03,
-                                    **layout).to_bytes("svg")
+                                    annotations="height,wall_thickness", **layout).to_bytes("svg")
         with open(laid_out, "rb") as f:
             assert f.read() == expected, "the panel's layout choices do not reach the library as named"
         assert b"B7 mm" in expected
+        assert b">height " in expected and b">wall " in expected, "the annotations ticked are not written"
         expect_cancelled(operators, lambda: bpy.ops.sherd.draw(filepath=svg, style=set()), "at least one")
         expect_cancelled(operators, lambda: bpy.ops.sherd.draw(filepath=os.path.join(folder, "x.gif")), "sherd")
 

@@ -229,6 +229,7 @@ static SherdDrawOptions *random_draw_options(void) {
     if (chance(40)) CALL(sherd_draw_options_set_views(options, chance(50), chance(50)));
     if (chance(40)) CALL(sherd_draw_options_set_interior_view(options, chance(50)));
     if (chance(40)) CALL(sherd_draw_options_set_prolongation(options, chance(50)));
+    if (chance(40)) CALL(sherd_draw_options_set_annotations(options, chance(50) ? (uint32_t)below(8) : random_enum()));
     if (chance(40)) CALL(sherd_draw_options_set_title(options, titles[below(5)]));
     return options;
 }

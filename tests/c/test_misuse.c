@@ -371,6 +371,11 @@ static void test_refine_measure_draw_misuse(void) {
     CHECK_STATUS(sherd_draw_options_set_style(draw_options, 0u), SHERD_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(sherd_draw_options_set_style(draw_options, 64u), SHERD_STATUS_INVALID_ARGUMENT);
     CHECK_MESSAGE("SHERD_STYLE_");
+    CHECK_STATUS(sherd_draw_options_set_annotations(draw_options, 8u), SHERD_STATUS_INVALID_ARGUMENT);
+    CHECK_MESSAGE("SHERD_ANNOTATION_");
+    CHECK_OK(sherd_draw_options_set_annotations(draw_options, 0u));
+    CHECK_OK(sherd_draw_options_set_annotations(draw_options, SHERD_ANNOTATION_HEIGHT | SHERD_ANNOTATION_WALL_THICKNESS |
+                                                                  SHERD_ANNOTATION_CAPACITY));
     CHECK_STATUS(sherd_draw_options_set_section_fill(draw_options, 2u), SHERD_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(sherd_draw_options_set_placement(draw_options, 9u), SHERD_STATUS_INVALID_ARGUMENT);
     CHECK_STATUS(sherd_draw_options_set_regularity(draw_options, 5u), SHERD_STATUS_INVALID_ARGUMENT);
@@ -384,6 +389,7 @@ static void test_refine_measure_draw_misuse(void) {
     NULL_ARGUMENT(sherd_draw_options_set_style(NULL, 1u), "options");
     NULL_ARGUMENT(sherd_draw_options_set_interior_view(NULL, true), "options");
     NULL_ARGUMENT(sherd_draw_options_set_prolongation(NULL, false), "options");
+    NULL_ARGUMENT(sherd_draw_options_set_annotations(NULL, SHERD_ANNOTATION_HEIGHT), "options");
     NULL_ARGUMENT(sherd_draw_options_new(NULL), "out_options");
 
     CHECK_OK(sherd_measure_options_new(&measure_options));

@@ -104,6 +104,7 @@ static void draw(const SherdMesh *mesh, const SherdAxis *axis) {
     CHECK_OK(sherd_draw_options_set_placement(options, SHERD_PLACEMENT_TRUE_DISTANCE));
     CHECK_OK(sherd_draw_options_set_interior_view(options, false));
     CHECK_OK(sherd_draw_options_set_prolongation(options, true));
+    CHECK_OK(sherd_draw_options_set_annotations(options, SHERD_ANNOTATION_HEIGHT | SHERD_ANNOTATION_WALL_THICKNESS));
     CHECK_OK(sherd_drawing_build(mesh, axis, options, &drawing));
     sherd_draw_options_free(options);
     for (format = SHERD_FORMAT_SVG; format <= SHERD_FORMAT_PNG; ++format) {
@@ -116,6 +117,9 @@ static void draw(const SherdMesh *mesh, const SherdAxis *axis) {
         CHECK(size > 100);
         if (format == SHERD_FORMAT_SVG) {
             CHECK(strstr((const char *)data, expected) != NULL && strstr((const char *)data, "C99 test sherd"));
+            /* The annotations asked for, and only those: a rim sherd has no capacity. */
+            CHECK(strstr((const char *)data, ">height ") != NULL && strstr((const char *)data, ">wall ") != NULL);
+            CHECK(strstr((const char *)data, ">capacity ") == NULL);
         } else {
             CHECK(memcmp(data, expected, strlen(expected)) == 0);
         }

@@ -264,15 +264,17 @@ def test_draw_writes_the_illustration(rim_sherd, tmp_path, fmt, suffix):
 
 
 def test_draw_takes_every_layout_choice_under_the_librarys_names(rim_sherd, tmp_path):
-    """placement, section_fill, interior_view, prolongation, title and the section angle
-    reach the library: the drawing changes with each, and the title is in the SVG."""
+    """placement, section_fill, interior_view, prolongation, the annotations, title and the
+    section angle reach the library: the drawing changes with each, and the title is in the SVG."""
     scan, _ = rim_sherd
     ms = load(scan)
     drawings = {}
     choices = {"default": {}, "placement": dict(placement=1), "section_fill": dict(section_fill=1),
                "interior_view": dict(interior_view=False), "prolongation": dict(prolongation=False),
                "section_angle": dict(most_informative_section=False, section_angle_deg=3.0),
-               "title": dict(title="M12 mm")}
+               "title": dict(title="M12 mm"),
+               "annotations": dict(annotations_height=True, annotations_wall_thickness=True,
+                                   annotations_capacity=True)}
     for name, parameters in choices.items():
         target = tmp_path / f"{name}.svg"
         ms.apply_filter("sherd_draw", file=str(target), format=0, dpi=40.0, style_occlusion=False, style_light=False,
@@ -281,6 +283,9 @@ def test_draw_takes_every_layout_choice_under_the_librarys_names(rim_sherd, tmp_
     for name, drawing in drawings.items():
         assert name == "default" or drawing != drawings["default"], f"{name} did not change the drawing"
     assert b"M12 mm" in drawings["title"]
+    # The annotations ticked are written (a rim sherd has no capacity to write), and none by default.
+    assert b">height " in drawings["annotations"] and b">wall " in drawings["annotations"]
+    assert b">height " not in drawings["default"] and b">wall " not in drawings["default"]
 
 
 @pytest.mark.parametrize("name, parameters, message", [

@@ -165,7 +165,7 @@ def test_drawing_options_have_the_command_lines_names(tmp_path):
     axis_file = tmp_path / "axis.json"
     axis_file.write_text(json.dumps({"point": [float(v) for v in axis.point], "direction": [float(v) for v in axis.direction]}))
     layout = dict(placement="true_distance", section_fill="hatched", interior_view=False, prolongation=False,
-                  title="Py 13 mm")
+                  title="Py 13 mm", annotations="height,wall_thickness")
     cli = tmp_path / "cli.svg"
     arguments = [str(sherd_command()), "draw", str(path), "--axis", str(axis_file), "--style", "linear,light",
                  "--dpi", "60", "--section-angle", "4", "-o", str(cli)]

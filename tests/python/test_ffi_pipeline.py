@@ -234,6 +234,35 @@ def test_drawing_in_each_format(tmp_path, oriented_rim):
         sherd.Drawing(mesh, axis, style="linear", dpi=1)
 
 
+def test_drawing_annotations_by_name(oriented_rim):
+    """``annotations`` writes the measurements asked for under the drawing, by the names of
+    ``sherd draw --annotations``; a rim sherd's profile does not reach the base, so it has
+    no capacity to write even when asked."""
+    mesh, _, axis = oriented_rim
+
+    def texts(**options):
+        svg = sherd.Drawing(mesh, axis, style="linear", dpi=40, **options).to_bytes("svg")
+        return {label for label in (b">height ", b">wall ", b">capacity ") if label in svg}, svg
+
+    assert texts()[0] == set()
+    assert texts(annotations="none")[0] == set()
+    assert texts(annotations="height")[0] == {b">height "}
+    both, svg = texts(annotations="height, wall-thickness")
+    assert both == {b">height ", b">wall "}
+    assert texts(annotations=["wall_thickness", "height"])[1] == svg
+    assert texts(annotations=1 | 2)[1] == svg
+    assert texts(annotations="all")[0] == {b">height ", b">wall "}
+    assert texts(annotations=[])[0] == set()
+    with pytest.raises(sherd.InvalidArgumentError, match="unknown annotation 'volume'"):
+        sherd.Drawing(mesh, axis, style="linear", annotations="height,volume")
+    with pytest.raises(sherd.InvalidArgumentError, match="cannot be combined"):
+        sherd.Drawing(mesh, axis, style="linear", annotations="all,height")
+    with pytest.raises(sherd.InvalidArgumentError, match="no annotation given"):
+        sherd.Drawing(mesh, axis, style="linear", annotations=" ")
+    with pytest.raises(sherd.InvalidArgumentError, match="SHERD_ANNOTATION_"):
+        sherd.Drawing(mesh, axis, style="linear", annotations=8)
+
+
 def test_a_sense_uncertain_sherd_says_so_and_keeps_its_axis_line():
     # synthetic_sherd(30): its axis line is found, which way is up is not (as in
     # tests/pipeline_working_copy.rs); the status, not the reason's wording, tells a host.

@@ -466,10 +466,17 @@ SECTION_FILL_ITEMS = [
     ("hatched", "Hatched", "45-degree hatching"),
 ]
 
+#: The measurements written under the drawing (annotations; ``sherd draw --annotations``).
+ANNOTATION_ITEMS = [
+    ("height", "Height", "The preserved height along the axis"),
+    ("wall_thickness", "Wall thickness", "The median wall thickness"),
+    ("capacity", "Capacity", "The capacity, where the profile runs from base to rim"),
+]
+
 #: The drawing's layout choices, as the Draw operator and the panel's settings name them
 #: (the panel's carry a "drawing_" prefix).
-LAYOUT_SETTINGS = ("placement", "section_fill", "interior_view", "prolongation", "title", "section_angle_auto",
-                   "section_angle_rad")
+LAYOUT_SETTINGS = ("placement", "section_fill", "interior_view", "prolongation", "annotations", "title",
+                   "section_angle_auto", "section_angle_rad")
 
 
 def show_image(context, path):
@@ -501,6 +508,8 @@ class SHERD_OT_draw(SherdOperator, bpy.types.Operator):
                                           description="Draw the interior view between the section and the axis")
     prolongation: bpy.props.BoolProperty(name="Prolongation", default=True,
                                          description="Prolong the outer profile, dashed, to the full diameter")
+    annotations: bpy.props.EnumProperty(name="Annotations", items=ANNOTATION_ITEMS, options={'ENUM_FLAG'}, default=set(),
+                                        description="Measurements written under the drawing")
     title: bpy.props.StringProperty(name="Title", default="", description="A title (inventory number...)")
     section_angle_auto: bpy.props.BoolProperty(name="Most informative section", default=True,
                                                description="Cut the most informative profile; off: at Section angle")
@@ -523,6 +532,7 @@ class SHERD_OT_draw(SherdOperator, bpy.types.Operator):
                                       scale_denominator=self.scale_denominator, dpi=self.dpi,
                                       placement=self.placement, section_fill=self.section_fill,
                                       interior_view=self.interior_view, prolongation=self.prolongation,
+                                      annotations=sorted(self.annotations),
                                       title=self.title or None,
                                       section_angle_rad=None if self.section_angle_auto else self.section_angle_rad)
             update(2)

@@ -33,6 +33,8 @@ class SherdSettings(bpy.types.PropertyGroup):
                                                  default="black")
     drawing_interior_view: bpy.props.BoolProperty(name="Interior view", default=True)
     drawing_prolongation: bpy.props.BoolProperty(name="Prolongation", default=True)
+    drawing_annotations: bpy.props.EnumProperty(name="Annotations", items=operators.ANNOTATION_ITEMS,
+                                                options={'ENUM_FLAG'}, default=set())
     drawing_title: bpy.props.StringProperty(name="Title", default="")
     drawing_section_angle_auto: bpy.props.BoolProperty(name="Most informative section", default=True)
     drawing_section_angle_rad: bpy.props.FloatProperty(name="Section angle", subtype='ANGLE', default=0.0,
@@ -165,6 +167,8 @@ class SHERD_PT_panel(bpy.types.Panel):
         box.prop(settings, "drawing_section_fill")
         box.prop(settings, "drawing_interior_view")
         box.prop(settings, "drawing_prolongation")
+        box.label(text="Annotations")
+        box.grid_flow(row_major=True, columns=2, align=True).prop(settings, "drawing_annotations", expand=True)
         box.prop(settings, "drawing_title")
         box.prop(settings, "drawing_section_angle_auto")
         if not settings.drawing_section_angle_auto:

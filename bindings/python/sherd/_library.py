@@ -267,6 +267,7 @@ _declare("sherd_draw_options_set_regularity", Status, SherdOptions_p, ctypes.c_u
 _declare("sherd_draw_options_set_title", Status, SherdOptions_p, ctypes.c_char_p)
 _declare("sherd_draw_options_set_interior_view", Status, SherdOptions_p, ctypes.c_bool)
 _declare("sherd_draw_options_set_prolongation", Status, SherdOptions_p, ctypes.c_bool)
+_declare("sherd_draw_options_set_annotations", Status, SherdOptions_p, ctypes.c_uint32)
 _declare("sherd_drawing_build", Status, SherdMesh_p, SherdAxis_p, SherdOptions_p, ctypes.POINTER(SherdDrawing_p))
 _declare("sherd_drawing_write", Status, SherdDrawing_p, ctypes.c_char_p)
 _declare("sherd_drawing_to_buffer", Status, SherdDrawing_p, ctypes.c_uint32, ctypes.POINTER(SherdBuffer_p))

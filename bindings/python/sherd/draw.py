@@ -5,7 +5,7 @@ import ctypes
 import os
 
 from . import _library as c
-from .errors import check
+from .errors import InvalidArgumentError, Status, check
 from .handle import Handle
 from .options import Options, enum_value, take_buffer
 
@@ -14,17 +14,39 @@ FORMATS = {"svg": 0, "eps": 1, "pdf": 2, "png": 3}
 FILLS = {"black": 0, "hatched": 1}
 PLACEMENTS = {"beside": 0, "true_distance": 1, "true-distance": 1}
 REGULARITY = {"axis_distance": 0, "ideal_vessel": 1, "axis-distance": 0, "ideal-vessel": 1}
+#: The measurements under the drawing (SHERD_ANNOTATION_* bits); all and none stand alone.
+ANNOTATIONS = {"height": 1, "wall_thickness": 2, "wall-thickness": 2, "capacity": 4, "all": 7, "none": 0}
+
+
+def _bits(names, value, what):
+    """The or of the bits of a list or comma-separated string of names; an int as it is
+    (the C ABI checks it)."""
+    if isinstance(value, str):
+        value = [name.strip() for name in value.split(",") if name.strip()]
+    if isinstance(value, (list, tuple, set, frozenset)):
+        bits = 0
+        for name in value:
+            bits |= enum_value(names, name, what)
+        return bits
+    return int(value)
 
 
 def _styles(value):
+    return _bits(STYLES, value, "style")
+
+
+def _annotations(value):
+    """``annotations``: names among height, wall_thickness, capacity, or all, or none
+    (a list may also be empty: none, as a host's empty set of check boxes)."""
     if isinstance(value, str):
+        if not value.strip():
+            raise InvalidArgumentError(Status.INVALID_ARGUMENT, "no annotation given; say \"none\" for none")
         value = [name.strip() for name in value.split(",") if name.strip()]
-    if isinstance(value, (list, tuple, set)):
-        bits = 0
-        for name in value:
-            bits |= enum_value(STYLES, name, "style")
-        return bits
-    return int(value)
+    if isinstance(value, (list, tuple, set, frozenset)) and len(value) > 1 \
+            and {str(name).lower() for name in value} & {"all", "none"}:
+        raise InvalidArgumentError(Status.INVALID_ARGUMENT,
+                                   f"annotations {list(value)}: all and none cannot be combined with others")
+    return _bits(ANNOTATIONS, value, "annotation")
 
 
 class Drawing(Handle):
@@ -34,14 +56,16 @@ class Drawing(Handle):
 
     def __init__(self, mesh, axis, *, style="light,occlusion", scale_denominator=None, dpi=None,
                  section_angle_rad=None, section_fill=None, placement=None, regularity=None, title=None,
-                 interior_view=None, prolongation=None):
+                 interior_view=None, prolongation=None, annotations=None):
         """Builds the drawing of ``mesh`` oriented by ``axis``; ``style`` is a list or a
         comma-separated string of linear, colour, light, occlusion, stipple, regularity
         (the default, light and occlusion, is the library's and ``sherd draw``'s).
         ``placement`` is beside or true_distance, ``section_fill`` black or hatched,
         ``interior_view`` and ``prolongation`` True or False, ``section_angle_rad`` the
-        section's angle about the axis (None: the most informative profile); None keeps
-        the library's default."""
+        section's angle about the axis (None: the most informative profile),
+        ``annotations`` the measurements written under the drawing: a list or
+        comma-separated string of height, wall_thickness, capacity, or "all", or "none"
+        (the default); None keeps the library's default."""
         setters = {
             "style": _styles,
             "scale_denominator": int,
@@ -53,10 +77,11 @@ class Drawing(Handle):
             "title": lambda v: v.encode("utf-8"),
             "interior_view": bool,
             "prolongation": bool,
+            "annotations": _annotations,
         }
         values = dict(style=style, scale_denominator=scale_denominator, dpi=dpi, section_angle_rad=section_angle_rad,
                       section_fill=section_fill, placement=placement, regularity=regularity, title=title,
-                      interior_view=interior_view, prolongation=prolongation)
+                      interior_view=interior_view, prolongation=prolongation, annotations=annotations)
         super().__init__(None)
         handle = c.SherdDrawing_p()
         c_axis = axis.to_c()

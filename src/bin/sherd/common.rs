@@ -5,7 +5,7 @@ use std::path::Path;
 
 use clap::{Args, ValueEnum};
 
-use sherd::draw::{DrawOptions, Placement, RegularityKind, SectionFill, Style};
+use sherd::draw::{Annotations, DrawOptions, Placement, RegularityKind, SectionFill, Style};
 use sherd::mesh::fingerprint::ScanFingerprint;
 use sherd::mesh::Point;
 use sherd::orient::{Axis, AxisRecord};
@@ -357,7 +357,7 @@ fn parse_degrees(text: &str) -> Result<f64, String> {
 
 /// How a sherd is drawn: every layout choice of the library's `DrawOptions`, under the
 /// names of the C ABI and Python (`section_fill`, `placement`, `interior_view`,
-/// `prolongation`, `title`, `section_angle`, `regularity`), hyphenated.
+/// `prolongation`, `annotations`, `title`, `section_angle`, `regularity`), hyphenated.
 #[derive(Args, Debug, Clone)]
 pub struct DrawingArgs {
     /// Rendering styles, combinable: linear, colour, light, occlusion, stipple, regularity.
@@ -383,6 +383,11 @@ pub struct DrawingArgs {
     /// Prolong the outer profile, dashed, to the full diameter (true or false).
     #[arg(long, value_name = "BOOL", default_value_t = true, action = clap::ArgAction::Set)]
     pub prolongation: bool,
+    /// Measurements written under the drawing besides the diameters and the preserved
+    /// share: a comma list of height, wall_thickness, capacity (or wall-thickness), or
+    /// all, or none. Each is left out where it was not measured.
+    #[arg(long, value_name = "LIST", default_value = "none")]
+    pub annotations: String,
     /// A title above the drawing (inventory number...).
     #[arg(long, value_name = "TEXT")]
     pub title: Option<String>,
@@ -399,6 +404,7 @@ impl DrawingArgs {
     /// The library's drawing options, checked.
     pub fn draw_options(&self) -> Result<DrawOptions, String> {
         let style = Style::parse(&self.style).map_err(|e| format!("--style: {e}"))?;
+        let annotations = Annotations::parse(&self.annotations).map_err(|e| format!("--annotations: {e}"))?;
         let options = DrawOptions {
             style,
             scale_denominator: self.scale,
@@ -413,6 +419,7 @@ impl DrawingArgs {
             },
             interior_view: self.interior_view,
             prolongation: self.prolongation,
+            annotations,
             title: self.title.clone(),
             section_angle_rad: self.section_angle.map(f64::to_radians),
             regularity: match self.regularity {
@@ -470,8 +477,12 @@ pub fn describe(record: &sherd::pipeline::SherdRecord) -> String {
     if let Some(d) = record.base_diameter_mm {
         let _ = writeln!(text, "  base diameter: {d:.0} mm{}", interval(record.base_diameter_interval_mm));
     }
+    // The rim's own arc (what a rim chart reads) beside the sherd's.
+    let rim_arc = record.rim_sector_deg.map(|arc| format!("; rim arc: {arc:.1} deg ({:.1}% of the rim)", arc / 3.6));
     if let (Some(angle), Some(percent)) = (record.sector_angle_deg, record.sector_percent) {
-        let _ = writeln!(text, "  preserved sector: {angle:.1} deg ({percent:.1}% of the circumference)");
+        let _ = writeln!(text, "  preserved sector: {angle:.1} deg ({percent:.1}% of the circumference){}", rim_arc.unwrap_or_default());
+    } else if let Some(arc) = rim_arc {
+        let _ = writeln!(text, "  {}", arc.trim_start_matches("; "));
     }
     if let Some(h) = record.height_mm {
         let _ = writeln!(text, "  preserved height: {h:.1} mm");
@@ -481,6 +492,10 @@ pub fn describe(record: &sherd::pipeline::SherdRecord) -> String {
     }
     if let Some(c) = record.capacity_litres {
         let _ = writeln!(text, "  capacity: {c:.2} l");
+    }
+    // What could not be measured and why: a plate without a level rim gets no rim diameter.
+    for note in &record.notes {
+        let _ = writeln!(text, "  note: {note}");
     }
     if let Some([_, hi]) = record.axis_angle_interval_deg {
         let _ = writeln!(text, "  axis angle uncertainty: {hi:.2} deg (95%)");

@@ -18,7 +18,8 @@ Styles combine: linear (outlines), colour (vertex colours or texture), light\n\
 (directional), occlusion (ambient occlusion), stipple (dots), regularity (distance to\n\
 the ideal vessel, with a legend); the default, light,occlusion, is the library's.\n\
 The layout: --placement beside|true-distance, --section-fill black|hatched,\n\
---interior-view true|false, --prolongation true|false, --title TEXT, --section-angle DEG\n\
+--interior-view true|false, --prolongation true|false, --title TEXT, --section-angle DEG,\n\
+--annotations height,wall_thickness,capacity|all|none (measurements under the drawing)\n\
 (the names of the C ABI's and Python's options). The output's extension picks the format:\n\
 .svg, .eps, .pdf or .png. An --axis file from `sherd orient --json` records the scan it was\n\
 found on; an axis of another scan is refused."
