@@ -302,7 +302,12 @@ pub fn orient_automatic_with_decimated(mesh: &Mesh, decimated: Option<&Mesh>, op
     // lip level under the best tells the two apart. Not a floor: under a wrong axis
     // through a near-spherical piece its cap reads as one.
     let level_lip = evidence.cues.level_edge.abs() >= options.thresholds.min_sense_confidence;
-    if let Some(crossing) = unresolved.iter().find(|(angle, _)| *angle > verdict::CROSSING_COMPETITOR_ANGLE_DEG).filter(|_| !level_lip) {
+    // A crossing competitor the best still beats at the 5% level (though not at 1%) leaves
+    // an answer to give with its doubt; below that the two are a coin toss.
+    let undecided = |(angle, separation): &&&(f64, landscape::Separation)| {
+        *angle > verdict::CROSSING_COMPETITOR_ANGLE_DEG && !(separation.t_statistic >= MIN_CROSSING_SEPARATION_T)
+    };
+    if let Some(crossing) = unresolved.iter().find(undecided).filter(|_| !level_lip) {
         crossing_unresolved = Some(describe(crossing));
     } else if let Some(nearest) = unresolved.iter().min_by(|a, b| a.1.t_statistic.total_cmp(&b.1.t_statistic)) {
         doubts.push(describe(nearest));
@@ -440,6 +445,10 @@ const MIN_COMPETITOR_ANGLE_DEG: f64 = 15.0;
 /// landscape to have picked one axis (a one-sided test at about 1% with 10-16 blocks);
 /// below it the axis is given as uncertain.
 const MIN_SEPARATION_T: f64 = 3.0;
+/// The least t statistic of the best valley over a competitor across it (more than
+/// [`verdict::CROSSING_COMPETITOR_ANGLE_DEG`] away) for the best to be given as an answer
+/// at all, with its doubt below [`MIN_SEPARATION_T`]: a one-sided test at about 5%.
+const MIN_CROSSING_SEPARATION_T: f64 = 2.0;
 /// How far the position probe moves the best axis, mm: well past what makes an axis
 /// wrong (4 mm of mean point distance).
 const POSITION_PROBE_MM: f64 = 10.0;
