@@ -14,7 +14,7 @@ use crate::mesh::io::read_mesh_with_report;
 use crate::mesh::repair::{repair, RepairOptions, RepairReport};
 use crate::mesh::{Mesh, Point};
 use crate::orient::{decimated_copy, orient_automatic_with_decimated, orient_from_three_points, Axis, AxisRecord, ManualOptions, OrientOptions, Orientation, Verdict};
-use crate::profile::measure::{measure_with_bootstrap_mesh, MeasureOptions, Measurements};
+use crate::profile::measure::{measure_with_bootstrap_mesh, MeasureOptions, Measurements, AXIS_DOUBT_NOTE};
 use crate::profile::rills::{rill_check, three_points_on, trace_rills_under, Rill, RillCheck, RillOptions};
 use crate::refine::{chosen_criterion, refine, refine_placing_on, Criterion, RefineOptions, Refinement};
 use crate::{Error, Result};
@@ -400,8 +400,8 @@ pub struct SherdRecord {
     /// and when the orientation found no axis at all (too few points).
     #[serde(default)]
     pub best_guess: Option<BestGuess>,
-    /// What could not be measured and why (no level rim preserved, no capacity...), and
-    /// the measurements' doubts; empty when there is nothing to say.
+    /// What could not be measured and why (no level rim preserved, no capacity...); empty
+    /// when there is nothing to say. The axis's doubts are in `reason`, not here.
     #[serde(default)]
     pub notes: Vec<String>,
     /// The drawing written, if any.
@@ -477,7 +477,8 @@ impl SherdRecord {
             record.capacity_litres = m.capacity_litres;
             record.rim_sector_deg = m.rim_sector_deg;
             record.base_sector_deg = m.base_sector_deg;
-            record.notes = m.notes.clone();
+            // The axis's doubts are in `reason` already.
+            record.notes = m.notes.iter().filter(|note| !note.starts_with(AXIS_DOUBT_NOTE)).cloned().collect();
         }
         record.rills = rill_check(analysis.rills());
         record

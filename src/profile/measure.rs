@@ -150,6 +150,9 @@ pub const MAX_UNFLAGGED_AXIS_DISTANCE_MM: f64 = 5.0;
 /// (BENCHMARKS.md, session 23).
 pub const MAX_UNFLAGGED_SECTOR_MOVE_MM: f64 = 1.5;
 
+/// How each of [`Measurements::axis_doubts`] begins when it is repeated among the notes.
+pub const AXIS_DOUBT_NOTE: &str = "the axis is uncertain: ";
+
 /// A rim is measured when it is level over this share of the vertical sections (a rim
 /// preserved over a third of a sherd whose other end is a rising break line). Bases keep
 /// the stricter share of the refinement: a horizontal break low on a rim sherd is as
@@ -465,7 +468,7 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
                 ));
             }
             measurements.axis_uncertain = !measurements.axis_doubts.is_empty();
-            let doubts: Vec<String> = measurements.axis_doubts.iter().map(|d| format!("the axis is uncertain: {d}")).collect();
+            let doubts: Vec<String> = measurements.axis_doubts.iter().map(|d| format!("{AXIS_DOUBT_NOTE}{d}")).collect();
             measurements.notes.extend(doubts);
             // Each replicate's vertices are dropped once its radii are taken: kept all
             // at once they were 24 copies of the scan (140 MB for 500k faces).
