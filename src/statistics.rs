@@ -47,6 +47,21 @@ pub fn upper_median(values: &[f64]) -> f64 {
     sorted[sorted.len() / 2]
 }
 
+/// The least-squares line through the `(x, y)` pairs, as `(mean_x, mean_y, slope)`: it
+/// runs through the means with slope dy/dx, 0 where the x spread (their summed squared
+/// deviations) is at most `min_spread`. `None` for no pairs.
+pub fn least_squares_line(pairs: &[(f64, f64)], min_spread: f64) -> Option<(f64, f64, f64)> {
+    if pairs.is_empty() {
+        return None;
+    }
+    let n = pairs.len() as f64;
+    let mean_x = pairs.iter().map(|p| p.0).sum::<f64>() / n;
+    let mean_y = pairs.iter().map(|p| p.1).sum::<f64>() / n;
+    let (covariance, spread) =
+        pairs.iter().fold((0.0, 0.0), |(c, s), p| (c + (p.0 - mean_x) * (p.1 - mean_y), s + (p.0 - mean_x).powi(2)));
+    Some((mean_x, mean_y, if spread > min_spread { covariance / spread } else { 0.0 }))
+}
+
 /// For each index of `members`, its bin `0..bins` by rank of `values` (equal counts);
 /// other indices get 0.
 pub fn equal_count_bins(values: &[f64], members: &[usize], bins: usize) -> Vec<usize> {

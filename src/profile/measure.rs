@@ -257,15 +257,10 @@ fn edge_sector_deg(oriented: &[Point], edge: Edge, edge_radius_mm: f64) -> Optio
     let (mut intercept, mut slope) = (highest, 0.0);
     for _ in 0..3 {
         let selected: Vec<(f64, f64)> = bins.iter().copied().filter(|&(a, h)| h >= intercept + slope * a - EDGE_SECTOR_BAND_MM).collect();
-        let n = selected.len() as f64;
-        let mean_angle = selected.iter().map(|b| b.0).sum::<f64>() / n;
-        let mean_height = selected.iter().map(|b| b.1).sum::<f64>() / n;
-        let spread: f64 = selected.iter().map(|b| (b.0 - mean_angle).powi(2)).sum();
-        slope = if spread > 1e-6 {
-            selected.iter().map(|b| (b.0 - mean_angle) * (b.1 - mean_height)).sum::<f64>() / spread
-        } else {
-            0.0
-        };
+        // Some selected bin lies on or above the line fitted to them (their residuals sum
+        // to zero), so the next selection is never empty.
+        let (mean_angle, mean_height, fitted) = crate::statistics::least_squares_line(&selected, 1e-6).expect("a bin is selected");
+        slope = fitted;
         intercept = mean_height - slope * mean_angle;
     }
     let angles: Vec<f64> = candidates

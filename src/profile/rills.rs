@@ -18,6 +18,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::mesh::{Mesh, Point};
 use crate::orient::{Axis, Skin};
+use crate::statistics::least_squares_line;
 
 /// Settings of [`trace_rills`].
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -347,12 +348,9 @@ fn rill_of(skin: Skin, chain: &[(usize, Groove)]) -> Rill {
     let n = chain.len() as f64;
     let radius = chain.iter().map(|(_, g)| g.radius_mm).sum::<f64>() / n;
     let arcs: Vec<f64> = chain.iter().map(|(_, g)| g.angle_rad * radius).collect();
-    let mean_arc = arcs.iter().sum::<f64>() / n;
-    let mean_height = chain.iter().map(|(_, g)| g.height_mm).sum::<f64>() / n;
-    let (covariance, variance) = chain.iter().zip(&arcs).fold((0.0, 0.0), |(c, v), ((_, g), arc)| {
-        (c + (arc - mean_arc) * (g.height_mm - mean_height), v + (arc - mean_arc).powi(2))
-    });
-    let slope = covariance / variance.max(1e-12);
+    let heights: Vec<(f64, f64)> = chain.iter().zip(&arcs).map(|((_, g), arc)| (*arc, g.height_mm)).collect();
+    // A chain runs through at least two strips 3 mm apart: its arcs always spread.
+    let (mean_arc, mean_height, slope) = least_squares_line(&heights, 1e-12).expect("a chain has grooves");
     let straightness = (chain
         .iter()
         .zip(&arcs)
