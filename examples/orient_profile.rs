@@ -8,12 +8,14 @@
 //!     valgrind --tool=callgrind target/release/examples/orient_profile 3 rust 3
 //!
 //! and the difference of the two totals over 2 is the cost of one orientation, on all
-//! threads (rayon's workers included).
+//! threads (rayon's workers included). A fourth argument `body` takes the body sherd of
+//! `cargo bench --bench refine` instead, and a fifth `refine` adds the refinement.
 
 use std::ptr;
 
 use sherd::ffi::*;
 use sherd::orient::{orient_automatic, OrientOptions};
+use sherd::refine::{refine, RefineOptions};
 use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
 
 fn main() {
@@ -21,7 +23,9 @@ fn main() {
     let runs: usize = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(1);
     let through_c = args.get(2).is_some_and(|a| a == "c");
     let seed: u64 = args.get(3).and_then(|a| a.parse().ok()).unwrap_or(3);
-    let sherd = synthetic_sherd(seed, &SherdOptions { target_faces: 20_000, ..SherdOptions::for_part(SherdPart::Rim) });
+    let part = if args.get(4).is_some_and(|a| a == "body") { SherdPart::Body } else { SherdPart::Rim };
+    let with_refinement = args.get(5).is_some_and(|a| a == "refine");
+    let sherd = synthetic_sherd(seed, &SherdOptions { target_faces: 20_000, ..SherdOptions::for_part(part) });
     let mesh = sherd.mesh;
     let positions: Vec<f64> = mesh.positions.iter().flat_map(|p| [p.x, p.y, p.z]).collect();
     let triangles: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
@@ -42,7 +46,12 @@ fn main() {
             println!("{:?} {:?}", axis.point, axis.direction);
         } else {
             let orientation = orient_automatic(&mesh, &OrientOptions::default()).expect("the bench sherd orients");
-            println!("{:?} {:?}", orientation.axis.point, orientation.axis.direction);
+            let axis = if with_refinement {
+                refine(&mesh, &orientation.axis, &RefineOptions::default()).expect("the bench sherd refines").axis
+            } else {
+                orientation.axis
+            };
+            println!("{:?} {:?}", axis.point, axis.direction);
         }
     }
 }

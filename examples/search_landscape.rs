@@ -5,13 +5,19 @@
 //! the valleys, the t statistic by which the best beats its nearest competitor farther
 //! than 15 degrees (`orient::landscape`), and the search's time; then the ranks counted.
 //!
-//! Run: `cargo run --release --example search_landscape [VESSELS] [FIRST_SEED] [CELL_MM]`
-//! (defaults: 3 vessels from seed 0, 0.8 mm cells).
+//! Each line also gives the valley of the true direction (followed down from it): when it
+//! scores lower than the best valley the search missed it; when higher, the criterion
+//! itself prefers a wrong axis.
+//!
+//! Run: `cargo run --release --example search_landscape [VESSELS] [FIRST_SEED] [CELL_MM]
+//! [NOISE_MM] [DEFORMATION]` (defaults: 3 vessels from seed 0, 0.8 mm cells, the
+//! generator's noise and deformation; `sherd synth --noise-mm 0.15 --deformation 3`
+//! makes rough vessels).
 
 use std::time::Instant;
 
 use sherd::orient::landscape::{competing_valleys, sample_blocks};
-use sherd::orient::revolution_search::{search, SearchOptions};
+use sherd::orient::revolution_search::{descend, search, SearchOptions};
 use sherd::orient::{decimated_copy, mean_point_distance_mm, surface_of_revolution_lines, working_copy, OrientOptions};
 use sherd::statistics::nearest_rank_quantile;
 use sherd::synth::{generate_vessel, VesselOptions};
@@ -21,13 +27,18 @@ fn main() {
     let vessels: u64 = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(3);
     let first: u64 = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(0);
     let cell_size_mm: f64 = args.get(3).and_then(|a| a.parse().ok()).unwrap_or(0.8);
+    let defaults = VesselOptions::default();
+    let noise_mm: f64 = args.get(4).and_then(|a| a.parse().ok()).unwrap_or(defaults.noise_mm);
+    let deformation_scale: f64 = args.get(5).and_then(|a| a.parse().ok()).unwrap_or(defaults.deformation_scale);
     let options = OrientOptions::default();
+    // Fragments whose best valley is wrong: the true valley lower (missed) or higher.
+    let (mut missed, mut outscored) = (0usize, 0usize);
     let search_options = SearchOptions::default();
     // Rank 0 to 5 of the first valley within 4 mm; 6: none is.
     let mut ranks = [0usize; 7];
     let mut times_ms = Vec::new();
     for seed in first..first + vessels {
-        let vessel = generate_vessel(seed, &VesselOptions { cell_size_mm, random_motion: true, ..Default::default() });
+        let vessel = generate_vessel(seed, &VesselOptions { cell_size_mm, noise_mm, deformation_scale, random_motion: true, ..defaults.clone() });
         for (index, fragment) in vessel.fragments.iter().enumerate() {
             let decimated = decimated_copy(&fragment.mesh, &options).unwrap();
             let working = working_copy(&fragment.mesh, decimated.as_ref(), &options).unwrap();
@@ -49,11 +60,23 @@ fn main() {
                 .collect();
             let rank = distances.iter().position(|d| *d <= 4.0).unwrap_or(6).min(6);
             ranks[rank] += 1;
+            // The true direction's own valley, followed down as the final descents are.
+            let samples = &landscape.samples;
+            let truth_valley = descend(samples, &truth.direction, 1f64.to_radians(), 0.05f64.to_radians(), landscape.loss_scale_mm, 3, 25);
+            let truth_cost = truth_valley.cost;
+            let best_cost = landscape.valleys.first().map(|v| v.fit.cost).unwrap_or(f64::INFINITY);
+            if rank != 0 {
+                if truth_cost < best_cost {
+                    missed += 1;
+                } else {
+                    outscored += 1;
+                }
+            }
             let blocks = sample_blocks(&landscape.samples);
             let competitor_t = competing_valleys(&landscape, &blocks, 15.0).iter().map(|(_, s)| s.t_statistic).fold(f64::INFINITY, f64::min);
             let list = |values: Vec<String>| values.join(" ");
             println!(
-                "vessel {seed} fragment {index} {:?} sector {:.0} deg: rank {rank}, distances [{}] mm, angles [{}] deg, scores [{}], competitor t {competitor_t:.1}, {:.0} ms",
+                "vessel {seed} fragment {index} {:?} sector {:.0} deg: rank {rank}, distances [{}] mm, angles [{}] deg, scores [{}], true valley {truth_cost:.4}, competitor t {competitor_t:.1}, {:.0} ms",
                 fragment.truth.part,
                 fragment.truth.sector_angle_deg,
                 list(distances.iter().map(|d| format!("{d:.1}")).collect()),
@@ -71,4 +94,5 @@ fn main() {
         ranks[6],
         nearest_rank_quantile(&mut times_ms, 0.5)
     );
+    println!("best valley wrong: the true valley lower (the search missed it) for {missed}, higher (the criterion prefers a wrong axis) for {outscored}");
 }

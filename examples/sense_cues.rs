@@ -1,16 +1,22 @@
 //! How the sense cues (`orient::direction`) fare under the true axis line, on the tuning
 //! corpus: per part, how often they speak, and how often rightly.
-//! Run: `cargo run --release --example sense_cues [VESSELS] [FIRST_SEED]`
+//! Run: `cargo run --release --example sense_cues [VESSELS] [FIRST_SEED] [CELL_MM]
+//! [NOISE_MM] [DEFORMATION]` (defaults: 4 vessels from seed 0, 0.8 mm cells, the
+//! generator's noise and deformation).
 use sherd::orient::{orient_automatic, OrientOptions};
 use sherd::synth::{generate_vessel, VesselOptions};
 
 fn main() {
-    let args: Vec<u64> = std::env::args().skip(1).map(|a| a.parse().unwrap()).collect();
-    let (vessels, first) = (args.first().copied().unwrap_or(4), args.get(1).copied().unwrap_or(0));
+    let args: Vec<f64> = std::env::args().skip(1).map(|a| a.parse().expect("numbers")).collect();
+    let (vessels, first) = (args.first().map_or(4, |v| *v as u64), args.get(1).map_or(0, |v| *v as u64));
+    let defaults = VesselOptions::default();
+    let cell_size_mm = args.get(2).copied().unwrap_or(0.8);
+    let noise_mm = args.get(3).copied().unwrap_or(defaults.noise_mm);
+    let deformation_scale = args.get(4).copied().unwrap_or(defaults.deformation_scale);
     let options = OrientOptions::default();
     let mut table = std::collections::BTreeMap::new();
     for seed in first..first + vessels {
-        let vessel = generate_vessel(seed, &VesselOptions { cell_size_mm: 0.8, random_motion: true, ..Default::default() });
+        let vessel = generate_vessel(seed, &VesselOptions { cell_size_mm, noise_mm, deformation_scale, random_motion: true, ..defaults.clone() });
         for (index, fragment) in vessel.fragments.iter().enumerate() {
             let orientation = orient_automatic(&fragment.mesh, &options).unwrap();
             let Some(inputs) = orientation.sense_inputs.clone() else { continue };
