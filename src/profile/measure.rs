@@ -14,11 +14,11 @@ use serde::{Deserialize, Serialize};
 use super::rills::{trace_rills, Rill, RillOptions};
 use super::section::{most_informative_angle, oriented_frame, profile_section};
 use crate::mesh::{planar_length, Mesh, Point};
-use crate::orient::Axis;
+use crate::orient::{mean_point_distance_mm, Axis};
 use crate::refine::sections::{sector_angle_rad, vertical_sections, PreparedSurface, Skin, Surface};
 use crate::statistics::quantile;
 use crate::refine::tangent::Edge;
-use crate::refine::sector_jackknife::sector_jackknife_move_mm;
+use crate::refine::sector_jackknife::{jackknife_standard_error, sector_jackknife_axes};
 use crate::refine::uncertainty::{angle_interval_deg, bootstrap_axes, distance_interval_mm, value_interval, BootstrapOptions};
 use crate::refine::{detect_edges_over, RefineOptions, EDGE_LEVEL_FRACTION};
 
@@ -138,7 +138,7 @@ pub const MAX_UNFLAGGED_AXIS_INTERVAL_DEG: f64 = 4.0;
 pub const MAX_UNFLAGGED_AXIS_DISTANCE_MM: f64 = 5.0;
 
 /// An axis that moves further than this when the fragment is refined again without one
-/// quarter of its arc ([`sector_jackknife_move_mm`]) is reported uncertain, mm of mean point
+/// quarter of its arc ([`sector_jackknife_axes`]) is reported uncertain, mm of mean point
 /// distance. The bootstrap resamples sections that each span the whole arc, and on a
 /// clean scan they agree about an axis the vessel's deformation put off; leaving out part
 /// of the arc changes what the deformation says. On the synthetic corpus without scan
@@ -149,6 +149,10 @@ pub const MAX_UNFLAGGED_AXIS_DISTANCE_MM: f64 = 5.0;
 /// 13 for 15 of 129. With the corpus's 0.02 mm noise it catches 3 of 7 for 15 of 141
 /// (BENCHMARKS.md, session 23).
 pub const MAX_UNFLAGGED_SECTOR_MOVE_MM: f64 = 1.5;
+
+/// The normal distribution's two-sided 95% point: the sector jackknife's standard error
+/// times this widens the 95% intervals.
+const JACKKNIFE_Z: f64 = 1.96;
 
 /// How each of [`Measurements::axis_doubts`] begins when it is repeated among the notes.
 pub const AXIS_DOUBT_NOTE: &str = "the axis is uncertain: ";
@@ -432,19 +436,32 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
             measurements.axis_angle_interval_deg = angle_interval_deg(axis, &replicates, &options.bootstrap);
             measurements.axis_distance_interval_mm =
                 distance_interval_mm(axis, &replicates, &bootstrap_mesh.positions, &options.bootstrap);
+            let widen = |interval: &mut Option<[f64; 2]>, by: f64| {
+                if let Some([_, upper]) = interval.as_mut().filter(|_| by.is_finite()) {
+                    *upper = upper.hypot(by);
+                }
+            };
             if let Some((angle_deg, move_mm)) = options.axis_valley_width {
                 // The turn moves the axis, at the sherd's points, by the turn times their
                 // distance along the axis from their mean height, where it turns.
                 let mean_height = oriented.iter().map(|p| p.z).sum::<f64>() / oriented.len() as f64;
                 let along_mm = oriented.iter().map(|p| (p.z - mean_height).abs()).sum::<f64>() / oriented.len() as f64;
                 let distance_mm = move_mm.hypot(angle_deg.to_radians() * along_mm);
-                let widen = |interval: &mut Option<[f64; 2]>, by: f64| {
-                    if let Some([_, upper]) = interval.as_mut().filter(|_| by.is_finite()) {
-                        *upper = upper.hypot(by);
-                    }
-                };
                 widen(&mut measurements.axis_angle_interval_deg, angle_deg);
                 widen(&mut measurements.axis_distance_interval_mm, distance_mm);
+            }
+            // The vessel's deformation, which the bootstrap does not resample, shows as
+            // the axis's moves when a quarter of the arc is left out: their jackknife
+            // standard error widens the intervals.
+            let jackknife_axes = sector_jackknife_axes(bootstrap_mesh, axis, &options.refine);
+            let jackknife_moves_mm: Vec<f64> =
+                jackknife_axes.iter().map(|refined| mean_point_distance_mm(&bootstrap_mesh.positions, refined, axis)).collect();
+            let jackknife_turns_deg: Vec<f64> = jackknife_axes.iter().map(|refined| refined.line_angle_to_deg(axis)).collect();
+            if let Some(error_deg) = jackknife_standard_error(&jackknife_turns_deg) {
+                widen(&mut measurements.axis_angle_interval_deg, JACKKNIFE_Z * error_deg);
+            }
+            if let Some(error_mm) = jackknife_standard_error(&jackknife_moves_mm) {
+                widen(&mut measurements.axis_distance_interval_mm, JACKKNIFE_Z * error_mm);
             }
             if let Some([_, upper]) = measurements.axis_angle_interval_deg.filter(|i| i[1] > MAX_UNFLAGGED_AXIS_INTERVAL_DEG) {
                 measurements.axis_doubts.push(format!(
@@ -456,7 +473,7 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
                     "the axis's 95% position interval reaches {upper:.1} mm of mean point distance (more than {MAX_UNFLAGGED_AXIS_DISTANCE_MM})"
                 ));
             }
-            let sector_move_mm = sector_jackknife_move_mm(bootstrap_mesh, axis, &options.refine);
+            let sector_move_mm = jackknife_moves_mm.iter().copied().reduce(f64::max);
             if let Some(moved_mm) = sector_move_mm.filter(|moved| *moved > MAX_UNFLAGGED_SECTOR_MOVE_MM) {
                 measurements.axis_doubts.push(format!(
                     "refined without a quarter of the preserved arc, the axis moves by {moved_mm:.1} mm of mean point distance (more than {MAX_UNFLAGGED_SECTOR_MOVE_MM})"
@@ -465,20 +482,23 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
             measurements.axis_uncertain = !measurements.axis_doubts.is_empty();
             let doubts: Vec<String> = measurements.axis_doubts.iter().map(|d| format!("{AXIS_DOUBT_NOTE}{d}")).collect();
             measurements.notes.extend(doubts);
-            // Each replicate's vertices are dropped once its radii are taken: kept all
-            // at once they were 24 copies of the scan (140 MB for 500k faces).
-            let replicate_radii: Vec<[Option<f64>; 2]> = if has_rim || has_base {
-                replicates
-                    .iter()
-                    .map(|replicate| {
-                        let points = oriented_with(replicate);
+            // The rim's and the base's radii under each resampled or jackknifed axis. Each
+            // axis's vertices are dropped once its radii are taken: kept all at once they
+            // were 24 copies of the scan (140 MB for 500k faces).
+            let radii_under = |axes: &[Axis]| -> Vec<[Option<f64>; 2]> {
+                if !(has_rim || has_base) {
+                    return Vec::new();
+                }
+                axes.iter()
+                    .map(|other| {
+                        let points = oriented_with(other);
                         let radius = |wanted: bool, edge: Edge| if wanted { edge_radius(&points, &outer_skin, edge) } else { None };
                         [radius(has_rim, Edge::Rim), radius(has_base, Edge::Base)]
                     })
                     .collect()
-            } else {
-                Vec::new()
             };
+            let replicate_radii = radii_under(&replicates);
+            let jackknife_radii = radii_under(&jackknife_axes);
             let interval = |estimate: Option<f64>, edge: Edge| {
                 let estimate = estimate?;
                 let slot = if edge == Edge::Rim { 0 } else { 1 };
@@ -487,7 +507,13 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
                     Edge::Rim => options.bootstrap.rim_diameter_floor_fraction,
                     Edge::Base => options.bootstrap.base_diameter_floor_fraction,
                 };
-                value_interval(estimate, &values, estimate * floor_fraction, &options.bootstrap).map(|[a, b]| [2.0 * a, 2.0 * b])
+                let [low, high] = value_interval(estimate, &values, estimate * floor_fraction, &options.bootstrap)?;
+                let deviations: Vec<f64> = jackknife_radii.iter().filter_map(|radii| radii[slot]).map(|r| r - estimate).collect();
+                let half_width = match jackknife_standard_error(&deviations) {
+                    Some(error) => ((high - low) / 2.0).hypot(JACKKNIFE_Z * error),
+                    None => (high - low) / 2.0,
+                };
+                Some([2.0 * (estimate - half_width), 2.0 * (estimate + half_width)])
             };
             measurements.rim_diameter_interval_mm = interval(measurements.rim_radius_mm, Edge::Rim);
             measurements.base_diameter_interval_mm = interval(measurements.base_radius_mm, Edge::Base);

@@ -23,22 +23,54 @@ pub const SECTOR_COUNT: usize = 4;
 
 /// The refinement by `options` made again from `axis` with each of [`SECTOR_COUNT`]
 /// equal-count sectors of `mesh` (by the vertices' angle about `axis`) left out: the
-/// largest mean point distance (the paper's measure, over all of `mesh`'s vertices)
-/// between `axis` and those refined axes, mm. `None` when no sector could be left out and
-/// the rest refined.
-pub fn sector_jackknife_move_mm(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Option<f64> {
-    let frame = axis.to_oriented_frame(&mesh.centroid()?);
+/// refined axes, one per sector that could be left out and the rest refined.
+pub fn sector_jackknife_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Vec<Axis> {
+    let Some(centroid) = mesh.centroid() else { return Vec::new() };
+    let frame = axis.to_oriented_frame(&centroid);
     // The centroid lies on +x: the arc's angles do not wrap unless it is nearly whole.
     let angles: Vec<f64> = mesh.positions.iter().map(|p| frame * p).map(|q| q.y.atan2(q.x)).collect();
     let sector = equal_count_bins(&angles, &(0..angles.len()).collect::<Vec<_>>(), SECTOR_COUNT);
-    let moves: Vec<f64> = (0..SECTOR_COUNT)
+    (0..SECTOR_COUNT)
         .into_par_iter()
         .filter_map(|left_out| {
             let mut rest = Mesh { normals: mesh.normals.clone(), ..Mesh::new(mesh.positions.clone(), mesh.triangles.clone()) };
             rest.keep_vertices(&sector.iter().map(|s| *s != left_out).collect::<Vec<_>>());
-            let refined = refine(&rest, axis, options).ok()?;
-            Some(mean_point_distance_mm(&mesh.positions, &refined.axis, axis))
+            refine(&rest, axis, options).ok().map(|refined| refined.axis)
         })
-        .collect();
-    moves.into_iter().reduce(f64::max)
+        .collect()
+}
+
+/// The largest mean point distance (the paper's measure, over all of `mesh`'s vertices)
+/// between `axis` and the axes of [`sector_jackknife_axes`], mm. `None` when no sector
+/// could be left out and the rest refined.
+pub fn sector_jackknife_move_mm(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Option<f64> {
+    sector_jackknife_axes(mesh, axis, options).iter().map(|refined| mean_point_distance_mm(&mesh.positions, refined, axis)).reduce(f64::max)
+}
+
+/// The jackknife's standard error of an estimate from the deviations of its leave-one-out
+/// estimates from it (Quenouille and Tukey): `sqrt((n - 1) / n * sum d^2)`. The full
+/// estimate stands in for the mean of the leave-out ones, which can only widen it. `None`
+/// with fewer than two.
+pub fn jackknife_standard_error(deviations: &[f64]) -> Option<f64> {
+    let n = deviations.len();
+    (n >= 2).then(|| ((n - 1) as f64 / n as f64 * deviations.iter().map(|d| d * d).sum::<f64>()).sqrt())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// For a mean the jackknife's standard error is exactly the textbook one, the sample
+    /// standard deviation over the square root of the count.
+    #[test]
+    fn jackknife_standard_error_of_a_mean_is_the_textbook_one() {
+        let values = [3.0, 7.5, 4.25, 9.0, 1.5];
+        let n = values.len() as f64;
+        let mean = values.iter().sum::<f64>() / n;
+        let leave_outs: Vec<f64> = values.iter().map(|v| (mean * n - v) / (n - 1.0) - mean).collect();
+        let sample_sd = (values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+        let jackknife = jackknife_standard_error(&leave_outs).unwrap();
+        assert!((jackknife - sample_sd / n.sqrt()).abs() < 1e-12, "{jackknife} against {}", sample_sd / n.sqrt());
+        assert_eq!(jackknife_standard_error(&[1.0]), None);
+    }
 }

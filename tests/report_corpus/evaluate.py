@@ -212,6 +212,7 @@ def evaluate_fragment(corpus, ply, sherd, refine, timeout):
         row.update(axis_figures(vertices, axis, truth["axis"]))
         ai = out.get("axis_angle_interval_deg")
         di = out.get("axis_distance_interval_mm")
+        row["angle_interval_deg"], row["distance_interval_mm"] = ai, di
         row["angle_interval_holds"] = None if not ai else bool(ai[1] >= row["line_angle_deg"])
         row["distance_interval_holds"] = None if not di else bool(di[1] >= row["line_distance_mm"])
     rim_true = truth.get("rim_radius_mm")
