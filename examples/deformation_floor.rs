@@ -20,8 +20,8 @@
 //!
 //! Run: `cargo run --release --example deformation_floor [VESSELS]`; the environment
 //! variables `REFINE_ACCURACY_DEFORMATION`, `REFINE_ACCURACY_NOISE_MM` and `REFINE_ACCURACY_CELL_MM` set the
-//! corpus as for `refine_accuracy` (the cells here 2 mm by default, as when its figures
-//! in BENCHMARKS.md, session 14, were measured). Prints, per part and for all, the share within 4 mm
+//! corpus as for `refine_accuracy` (the cells here 2 mm by default, as in the figures of
+//! BENCHMARKS.md, "Refinement: accuracy on the synthetic corpus"). Prints, per part and for all, the share within 4 mm
 //! mean point distance, the share within 0.3 degrees (the median goal needs half),
 //! the median and 90th percentile angle error.
 

@@ -1,6 +1,6 @@
 //! Accuracy of the refinement criteria on the synthetic corpus, and of the default
 //! pipeline (automatic pre-orientation + `Criterion::Auto`), as the table in
-//! BENCHMARKS.md (`## Refinement`) reports it.
+//! BENCHMARKS.md (`## Refinement: accuracy on the synthetic corpus`) reports it.
 //!
 //! Corpus: `VESSELS` vessels (seeds 0..), each broken into 34 fragments (the paper's
 //! synthetic test), moved by random rigid motions. Each criterion starts from the true
@@ -15,11 +15,11 @@
 //! perfect solids of revolution: what is left is the criteria's own error),
 //! `REFINE_ACCURACY_NOISE_MM=N` the scan noise (default 0.02 mm),
 //! `REFINE_ACCURACY_CELL_MM=C` the mesh cells' size (default 0.8 mm, the orientation
-//! issue's corpus, `REFINEMENT_CORPUS_CELL_MM`; 2 mm gives the figures measured until
-//! session 19, a body fragment about 1000 vertices instead of 6000),
+//! issue's corpus, `REFINEMENT_CORPUS_CELL_MM`; 2 mm gives the generator's default
+//! cells, a body fragment about 1000 vertices instead of 6000),
 //! `REFINE_ACCURACY_START_TILT_DEG=D` the start's tilt (default 3 degrees),
 //! `REFINE_ACCURACY_PIVOT=base` turns it about the centre of the vessel's standing plane
-//! instead (the figures measured until session 20),
+//! instead (a harsher start for fragments high on the vessel, see `perturbed`),
 //! `REFINE_ACCURACY_DUMP=1` prints a line per fragment on stderr (for the pipeline: the
 //! pre-orientation's and the refined axis's errors; for a criterion, its angle error split
 //! into the turn towards the sherd and across it, see `error_toward_sherd_deg`), and a
@@ -68,7 +68,7 @@ fn env_number(name: &str, default: f64) -> f64 {
 /// The true axis turned by `START_TILT_DEG` about a random horizontal direction through
 /// its point level with `sherd_centre`, and shifted by `START_SHIFT_MM` in a random
 /// horizontal direction (`REFINE_ACCURACY_PIVOT=base`: turned about the centre of the
-/// vessel's standing plane, as until session 20).
+/// vessel's standing plane).
 ///
 /// The pre-orientation's axis is the line the sherd's own normals meet, so it passes
 /// nearest the truth at the sherd: on this corpus (10 vessels, 0.8 mm cells) the 53 axes

@@ -1,7 +1,7 @@
 //! The whole pipeline in one call, as the command-line tool, the C ABI and batch runs use
 //! it: read, repair, orient (automatic or three points), refine, measure, and optionally
-//! draw. Data flow one way (design: "Data flows one way"); this module only chains the
-//! layers and records what each did, it holds no algorithm.
+//! draw. Data flows one way, each layer handing its result to the next; this module only
+//! chains the layers and records what each did, it holds no algorithm.
 
 use std::path::Path;
 use std::time::Instant;

@@ -1,4 +1,4 @@
-//! The `sherd` command's contract (`../shared/design.md`, "The command-line tool"), run
+//! The `sherd` command's contract (README.md, "Command line"), run
 //! as a user runs it: the JSON of `orient`, exit codes, error messages, `export`, and
 //! `batch` with its report, resuming and broken files.
 

@@ -1,5 +1,5 @@
 //! The layout of the archaeological illustration (Wilczek et al. 2018, sections 2.4.1
-//! and 2.4.2; design.md "Drawing conventions"; Griffiths, Jenner and Wilson 1990): the
+//! and 2.4.2; Griffiths, Jenner and Wilson 1990): the
 //! axis as a vertical dash-dot line; left of it the section at its true radius, filled,
 //! and the interior view between the section and the axis; right of it the exterior view
 //! inside the vessel's outline (the outer profile mirrored, dashed where the view does

@@ -1,6 +1,6 @@
 //! The stable C ABI (`include/sherd.h`, generated from this module by cbindgen).
 //!
-//! Rules (design: "The C ABI"): opaque handles with `_free` functions; result structs
+//! Rules: opaque handles with `_free` functions; result structs
 //! that begin with a `size` field; every entry point returns a `SherdStatus` and leaves
 //! a message for `sherd_last_error_message()`; enum-like inputs are `uint32_t` checked on
 //! entry; every pointer is checked for NULL; every body runs inside `catch_unwind`. No

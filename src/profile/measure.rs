@@ -141,13 +141,8 @@ pub const MAX_UNFLAGGED_AXIS_DISTANCE_MM: f64 = 5.0;
 /// quarter of its arc ([`sector_jackknife_axes`]) is reported uncertain, mm of mean point
 /// distance. The bootstrap resamples sections that each span the whole arc, and on a
 /// clean scan they agree about an axis the vessel's deformation put off; leaving out part
-/// of the arc changes what the deformation says. On the synthetic corpus without scan
-/// noise (`REFINE_ACCURACY_NOISE_MM=0 ... refine_accuracy 20 pipeline`) the pipeline's
-/// `ok` sherds moved 0.16 mm on median (1.75 at the 90th percentile) where they were
-/// within 4 mm of the truth; this limit, set on vessels 0-9, catches 7 of their 10 `ok`
-/// sherds past 4 mm for 16 of 145 right ones called uncertain, and on vessels 10-19 7 of
-/// 13 for 15 of 129. With the corpus's 0.02 mm noise it catches 3 of 7 for 15 of 141
-/// (BENCHMARKS.md, session 23).
+/// of the arc changes what the deformation says. Set on the synthetic corpus without scan
+/// noise, where right axes moved 0.16 mm on median (`docs/calibration.md`).
 pub const MAX_UNFLAGGED_SECTOR_MOVE_MM: f64 = 1.5;
 
 /// The normal distribution's two-sided 95% point: the sector jackknife's standard error

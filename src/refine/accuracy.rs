@@ -22,9 +22,8 @@ pub const REFINEMENT_CORPUS_FRAGMENTS_PER_VESSEL: usize = 34;
 
 /// Mesh cells of the refinement corpus, mm: the orientation issue's corpus
 /// (`examples/orient_accuracy.rs`, `tests/orient.rs`), fragments of a few thousand
-/// vertices, as a decimated scan. Until session 19 the refinement's figures were measured
-/// in the synthetic generator's default 2 mm cells (a body fragment about 1000 vertices),
-/// which `REFINE_ACCURACY_CELL_MM=2` still gives.
+/// vertices, as a decimated scan. `REFINE_ACCURACY_CELL_MM=2` gives the synthetic
+/// generator's default 2 mm cells instead (a body fragment about 1000 vertices).
 pub const REFINEMENT_CORPUS_CELL_MM: f64 = 0.8;
 
 /// The refinement corpus of `examples/refine_accuracy.rs` and `examples/deformation_floor.rs`:

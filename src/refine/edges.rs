@@ -171,7 +171,7 @@ pub const EDGE_LEVEL_FRACTION: f64 = 0.6;
 const EDGE_MAX_SPREAD_MM: f64 = 0.08;
 /// ...and their ends sag from the plane by at most this, mm ([`tangent::edge_sag_mm`]),
 /// unless a flat underside holds the base's plane: a rounded underside rocks, and Eq. 7
-/// levelled such bases 1.5-12 degrees off (BENCHMARKS.md, session 16).
+/// levels it degrees off while its extremes still look level (`docs/calibration.md`).
 const EDGE_MAX_SAG_MM: f64 = 0.15;
 /// A piece with less than this share of its vertices on a wall skin (facing away from or
 /// towards the axis) is a floor ([`is_floor`]). On the refinement corpus the rims keep

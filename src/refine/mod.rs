@@ -511,11 +511,9 @@ fn profile_from_start(surface: &PreparedSurface, options: &RefineOptions, settin
 /// the horizontal sections' circles, the profile criterion the vertical sections' shape.
 /// The vessel's deformation misleads them differently (the ovality moves a short arc's
 /// circle centres, the wobble bends its profiles), so their errors partly cancel. On the
-/// refinement corpus (`examples/refine_accuracy.rs 10 auto`, 0.8 mm cells) the 176
-/// fragments refined by circles went from 17 to 26 within 0.3 degrees (all fragments: 146
-/// to 155, and on the next ten vessels 157 to 164); within 4 mm they went from 160 to 166
-/// here but the next ten vessels lost five (BENCHMARKS.md, session 20): the gain is the
-/// direction's.
+/// refinement corpus (`examples/refine_accuracy.rs`) the average brings more fragments
+/// within 0.3 degrees, on vessels not used to set it too; within 4 mm it gains on some
+/// vessels and loses on others: the gain is the direction's.
 fn averaged_with_profile(
     circles: &circles::CirclesObjective,
     circles_result: &(AxisParameters, f64, f64, u64, bool),
@@ -567,13 +565,10 @@ struct Averaged {
 /// Where the averaged direction lies across the valley of Eq. 2 less than half as firmly,
 /// the placement slides along the fragment's radius, and an axis Eq. 2 alone had near the
 /// truth ends farther off; turned about the circles' axis at the fragment instead, it
-/// keeps the averaged direction and the position Eq. 2 fixed there. On the refinement
-/// corpus (`examples/refine_accuracy.rs 20 auto`) the average placed by Eq. 2 took 16
-/// fragments within 4 mm and 15 out of it; 9 of those 15 and 1 of the 16 lost more than
-/// half the curvature. Turned where they do, 8 more fragments are within 4 mm (625 to
-/// 633 of 661), and on vessels 20-29, not looked at to set it, 5 more (295 to 300 of
-/// 318); the directions, and so the median angle, are those of the average
-/// (BENCHMARKS.md, session 23).
+/// keeps the averaged direction and the position Eq. 2 fixed there. The fragments the
+/// average placed by Eq. 2 took out of 4 mm had mostly lost more than half the
+/// curvature (figures in `docs/calibration.md`); the directions, and so the median
+/// angle, are those of the average either way.
 const MIN_AVERAGED_PLACING_HOLD: f64 = 0.5;
 
 /// The axis with the tilts of `tilted` placed by the circles criterion (two shifts), and
@@ -652,7 +647,7 @@ fn usable_section_count(circles: &circles::CirclesObjective, parameters: &AxisPa
 /// that flat). Along the placement's own move the test tells something: a search that
 /// wandered far along that valley is probed along it and rises little, one that stayed
 /// near the start is probed in whatever direction its small shift took. Of those 351 it
-/// flagged 101, 26 of the 34 that ended more than 4 mm off (BENCHMARKS.md, session 22).
+/// flagged 101, 26 of the 34 that ended more than 4 mm off.
 pub(crate) fn radial_curvature(circles: &circles::CirclesObjective, p: &AxisParameters) -> f64 {
     let at = circles.value(p);
     // The start axis is the start frame's z axis (the fragment's centroid lies on +x at
@@ -670,13 +665,9 @@ pub(crate) fn radial_curvature(circles: &circles::CirclesObjective, p: &AxisPara
 /// its rise against. Below the residual a scan's noise leaves, what remains is the
 /// vessel's deformation, which is systematic: the rise over it says how far the
 /// deformation lets the axis slide, not how firmly the sections hold it, and the
-/// threshold [`MIN_PLACING_CURVATURE`] was set on scans with noise. On the refinement
-/// corpus (0.02 mm noise, 20 vessels) the circles criterion's results had residuals of
-/// 0.013-0.024 mm (5th to 75th percentile), so this floor leaves them as they were;
-/// without noise they had 0.0005-0.010 mm, and the relative test passed valleys as flat
-/// as those it flags on a noisy scan: 3.2% of the fragments ended past 4 mm unflagged
-/// (`Criterion::Auto`), 1.7% with this floor, against 0.9% with noise (BENCHMARKS.md,
-/// session 22).
+/// threshold [`MIN_PLACING_CURVATURE`] was set on scans with noise. The floor lies under
+/// the residuals a noisy scan leaves, so a noisy scan is judged as before, and more of a
+/// clean scan's flat valleys are flagged, though not all (`docs/calibration.md`).
 const MIN_PLACING_RESIDUAL_MM: f64 = 0.012;
 
 /// How far the placed axis is moved along the radial line to test its conditioning, mm.

@@ -6,7 +6,7 @@
 //! section spans the whole arc. The vessel's ovality and wobble mislead them all alike, so
 //! on a clean scan the resamples agree about an axis that is off (without scan noise the
 //! bootstrap's angle intervals reached 0.5-1.5 degrees around body sherds 1.3-4.7 degrees
-//! off: BENCHMARKS.md, session 22). The deformation differs along the arc: an axis the
+//! off). The deformation differs along the arc: an axis the
 //! arc's local shape put where it is, rather than its turning, moves when a quarter of
 //! the arc is left out.
 

@@ -1,6 +1,6 @@
 //! Synthetic sherds with known axes: a random vessel profile revolved with wall
 //! thickness, deformed, made noisy, broken along a Voronoi diagram and moved by random
-//! rigid motions. The test bed of every later layer (design: "Tests that count").
+//! rigid motions. The test bed of every later layer: its tests know the true axis.
 //!
 //! * [`synthetic_sherd`] makes one fragment of a requested part ([`SherdPart`]) at a
 //!   requested resolution, with its [`GroundTruth`]; [`SherdOptions::hard_case`] gives the

@@ -1,5 +1,5 @@
-//! The `sherd` command-line tool: the contract others script against
-//! (`../shared/design.md`, "The command-line tool"). One file per sub-command; no
+//! The `sherd` command-line tool: the contract others script against (README.md,
+//! "Command line"). One file per sub-command; no
 //! algorithm lives here, only argument parsing, calls into the library and output.
 //! Errors go to stderr with exit code 1 (2 for bad arguments, from clap).
 
