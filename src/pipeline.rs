@@ -206,12 +206,14 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
         let clock = Instant::now();
         let axis = refinement.as_ref().map_or(&orientation.axis, |r| &r.axis);
         let valley = (orientation.angle_uncertainty_deg, orientation.position_uncertainty_mm);
-        // A rim or base levelled by its tangent plane rests on evidence the landscape does
-        // not weigh (a level edge), and its bootstrap alone held the truth on the tuning
-        // corpora; a manual axis (NaN) has no landscape.
+        // A rim or base levelled by its tangent plane has its turn from evidence the
+        // landscape does not weigh (a level edge), but its position from the same skins
+        // as any other axis: the valley's move widens its position interval alone. A
+        // manual axis (NaN) has no landscape.
         let levelled = refinement.as_ref().is_some_and(|r| r.report.method == Criterion::Tangent);
+        let valley = if levelled { (f64::NAN, valley.1) } else { valley };
         let measure_options = MeasureOptions {
-            axis_valley_width: (!levelled && valley.0.is_finite() && valley.1.is_finite()).then_some(valley),
+            axis_valley_width: valley.1.is_finite().then_some(valley),
             ..options.measure.clone()
         };
         measurements = Some(measure_with_bootstrap_mesh(&mesh, bootstrap_mesh, axis, &measure_options));
@@ -455,7 +457,13 @@ impl SherdRecord {
             if record.status == STATUS_OK {
                 record.status = STATUS_AXIS_UNCERTAIN.into();
             }
-            record.reason = Some(record.reason.iter().cloned().chain(doubts.iter().cloned()).collect::<Vec<_>>().join("; "));
+            let doubts = doubts.join("; ");
+            // Beside a sense left open, say that the line itself is in doubt too: "the
+            // axis line is found" alone would read as a line to trust.
+            record.reason = Some(match record.reason.take() {
+                Some(sense) => format!("{sense}; and the axis line itself is uncertain: {doubts}"),
+                None => doubts,
+            });
         }
         record.axis = Some(in_scan_units(analysis.axis(), analysis.millimetres_per_unit).record());
         record.residual_mm = Some(match &analysis.refinement {

@@ -441,7 +441,7 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
                 // distance along the axis from their mean height, where it turns.
                 let mean_height = oriented.iter().map(|p| p.z).sum::<f64>() / oriented.len() as f64;
                 let along_mm = oriented.iter().map(|p| (p.z - mean_height).abs()).sum::<f64>() / oriented.len() as f64;
-                let distance_mm = move_mm.hypot(angle_deg.to_radians() * along_mm);
+                let distance_mm = if angle_deg.is_finite() { move_mm.hypot(angle_deg.to_radians() * along_mm) } else { move_mm };
                 widen(&mut measurements.axis_angle_interval_deg, angle_deg);
                 widen(&mut measurements.axis_distance_interval_mm, distance_mm);
             }
