@@ -1,10 +1,10 @@
 //! sherd's KdTree against kiddo 5 (its mutable KdTree and its ImmutableKdTree) on the
-//! 500k-face benchmark torus's 250k vertices; the same spatial.rs is compiled in.
+//! 500k-face benchmark torus's 250k vertices; the same src/mesh/spatial/ is compiled in.
 //!
 //!     cd benches/kiddo_comparison && cargo run --release
 //!     cargo run --release -- --bvh     # only: time three BVH builds of the torus
-// spatial.rs refers to `super::{Mesh, Point, Vector}`: the crate root stands in for
-// sherd's mesh module with the little it uses.
+// src/mesh/spatial/'s files refer to `super::super::{Mesh, Point, Vector}`: the crate root
+// stands in for sherd's mesh module with the little it uses.
 pub type Point = nalgebra::Point3<f64>;
 pub type Vector = nalgebra::Vector3<f64>;
 pub struct Mesh {
@@ -17,8 +17,8 @@ impl Mesh {
         Some(self.positions.iter().fold((first, first), |(lo, hi), p| (lo.inf(p), hi.sup(p))))
     }
 }
-#[allow(dead_code)]
-#[path = "../../../src/mesh/spatial.rs"]
+#[allow(dead_code, unused_imports)]
+#[path = "../../../src/mesh/spatial/mod.rs"]
 mod spatial;
 use kiddo::{KdTree, SquaredEuclidean};
 use std::time::Instant;
