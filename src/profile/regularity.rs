@@ -13,6 +13,7 @@ use rayon::prelude::*;
 use crate::mesh::Mesh;
 use crate::orient::Axis;
 use crate::profile::section::{oriented_positions, polygon_signed_area, ProfileSection};
+use crate::statistics::central_range;
 use crate::{Error, Result};
 
 /// Distance of every vertex to the axis, in millimetres.
@@ -181,12 +182,8 @@ impl ColorMap {
     /// A map spanning the 2nd to 98th percentile of `values` (robust to a few outliers);
     /// a diverging map is made symmetric about 0.
     pub fn fitted(values: &[f32], scale: ColorScale, title: &str, unit: &str) -> Self {
-        let mut finite: Vec<f32> = values.iter().copied().filter(|v| v.is_finite()).collect();
-        finite.sort_by(f32::total_cmp);
-        let (mut low, mut high) = match finite.len() {
-            0 => (0.0, 1.0),
-            n => (finite[n * 2 / 100] as f64, finite[(n * 98 / 100).min(n - 1)] as f64),
-        };
+        let (low, high) = central_range(values.iter().copied()).unwrap_or((0.0, 1.0));
+        let (mut low, mut high) = (low as f64, high as f64);
         if scale == ColorScale::Diverging {
             let m = low.abs().max(high.abs());
             (low, high) = (-m, m);
