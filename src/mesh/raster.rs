@@ -344,14 +344,17 @@ impl PixelBounds {
     /// `[x0, x1, y0, y1]`, the pixel centres (inclusive) in the bounding box of `triangle`
     /// within the bounds; `None` when there is none.
     #[inline]
-    fn covered(&self, spans: &[PixelSpan], triangle: [u32; 3]) -> Option<[usize; 4]> {
-        let [a, b, c] = triangle.map(|v| spans[v as usize]);
+    fn covered(&self, spans: &[PixelSpan], [a, b, c]: [u32; 3]) -> Option<[usize; 4]> {
+        let (a, b, c) = (&spans[a as usize], &spans[b as usize], &spans[c as usize]);
+        // A last of -1 (left of or above the image) is below any first.
         let x0 = a.first[0].min(b.first[0]).min(c.first[0]);
         let x1 = a.last[0].max(b.last[0]).max(c.last[0]).min(self.last_column);
+        if x0 > x1 {
+            return None;
+        }
         let y0 = a.first[1].min(b.first[1]).min(c.first[1]).max(self.first_row);
         let y1 = a.last[1].max(b.last[1]).max(c.last[1]).min(self.last_row);
-        // A last of -1 (left of or above the image) is below any first.
-        (x0 <= x1 && y0 <= y1).then_some([x0 as usize, x1 as usize, y0 as usize, y1 as usize])
+        (y0 <= y1).then_some([x0 as usize, x1 as usize, y0 as usize, y1 as usize])
     }
 }
 
