@@ -102,7 +102,9 @@ fn light_from_directions(mesh: &Mesh, options: &OcclusionOptions, reach_mm: Opti
                     }
                     _ => ZBuffer::new(camera.width, camera.height),
                 };
-                let projected = camera.project_all(&mesh.positions);
+                // One direction per task already: projecting in parallel too only adds
+                // the splitting.
+                let projected: Vec<[f32; 3]> = mesh.positions.iter().map(|p| camera.project(p)).collect();
                 rasterize_into(&mut buffer, &projected, &mesh.triangles);
                 for (f, tri) in mesh.triangles.iter().enumerate() {
                     let cosine = normals[f].dot(sky) as f32;
