@@ -480,8 +480,7 @@ fn occlusion_field(mesh: &Mesh, options: &DrawOptions) -> Result<OcclusionField>
     let (lo, hi) = mesh.bounding_box().ok_or_else(|| Error::DegenerateGeometry("no vertex to shade".into()))?;
     let reach_mm = ((hi - lo).norm() * NEAR_OCCLUSION_REACH_SHARE).max(1e-6);
     let light = near_and_far_light(mesh, &options.occlusion, reach_mm)?;
-    let near = smooth_over_neighbours(mesh, light.near, 4);
-    let full = smooth_over_neighbours(mesh, light.full, 4);
+    let (near, full) = rayon::join(|| smooth_over_neighbours(mesh, light.near, 4), || smooth_over_neighbours(mesh, light.full, 4));
     let far_factor: Vec<f32> = full.iter().zip(&near).map(|(&f, &n)| if n > 0.0 { (f / n).min(1.0) } else { 1.0 }).collect();
     let (low, high) = central_range(full.iter().copied()).unwrap_or((0.0, 1.0));
     Ok(OcclusionField { near, far_factor, low, span: (high - low).max(1e-6) })
