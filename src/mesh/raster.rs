@@ -76,6 +76,7 @@ impl OrthographicCamera {
 
     /// `[column, row, depth_mm]` of `p`: fractional pixel coordinates (pixel centres at
     /// `.5`) and the distance along `forward`.
+    #[inline]
     pub fn project(&self, p: &Point) -> [f32; 3] {
         let d = p - self.origin;
         [
