@@ -39,6 +39,22 @@ pub fn nearest_rank_quantile(values: &mut [f64], fraction: f64) -> f64 {
     values[((values.len() - 1) as f64 * fraction.clamp(0.0, 1.0)).round() as usize]
 }
 
+/// The values of ranks `n * 2 / 100` and `n * 98 / 100` of the `n` finite `values` (the
+/// 2nd and 98th percentiles by rank), `None` for none: the range a tone or colour scale
+/// stretches over, a few outliers left out. By selection, the same values as from a sort.
+pub fn central_range(values: impl Iterator<Item = f32>) -> Option<(f32, f32)> {
+    let mut finite: Vec<f32> = values.filter(|v| v.is_finite()).collect();
+    let n = finite.len();
+    if n == 0 {
+        return None;
+    }
+    let (low, high) = (n * 2 / 100, (n * 98 / 100).min(n - 1));
+    let (below, &mut high_value, _) = finite.select_nth_unstable_by(high, f32::total_cmp);
+    // The `high` least values are `below` (or none when `low == high`).
+    let low_value = if low == high { high_value } else { *below.select_nth_unstable_by(low, f32::total_cmp).1 };
+    Some((low_value, high_value))
+}
+
 /// The upper median of `values` (rank `n / 2` of the sorted values: one of the values
 /// even for an even count). Panics on no values: callers test for them first.
 pub fn upper_median(values: &[f64]) -> f64 {
@@ -134,6 +150,29 @@ mod tests {
             }
         }
         assert!(quantile(&mut [], 0.5).is_nan());
+    }
+
+    #[test]
+    fn central_range_is_the_sorted_ranks() {
+        let mut state = 777u64;
+        for length in [1usize, 2, 3, 49, 50, 51, 99, 100, 101, 1000, 4321] {
+            let values: Vec<f32> = (0..length)
+                .map(|i| {
+                    state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                    match i % 13 {
+                        0 => f32::NAN,
+                        1 => -0.0,
+                        _ => ((state >> 40) % 50) as f32 * 0.25 - 3.0,
+                    }
+                })
+                .collect();
+            let mut sorted: Vec<f32> = values.iter().copied().filter(|v| v.is_finite()).collect();
+            sorted.sort_by(f32::total_cmp);
+            let n = sorted.len();
+            let expected = (n > 0).then(|| (sorted[n * 2 / 100].to_bits(), sorted[(n * 98 / 100).min(n - 1)].to_bits()));
+            assert_eq!(central_range(values.into_iter()).map(|(l, h)| (l.to_bits(), h.to_bits())), expected, "{length}");
+        }
+        assert_eq!(central_range([f32::INFINITY, f32::NAN].into_iter()), None);
     }
 
     #[test]

@@ -27,6 +27,7 @@ use crate::orient::Axis;
 use crate::profile::measure::{measure, MeasureOptions, Measurements};
 use crate::profile::regularity::{axis_distance_map, ideal_vessel_map, ColorMap, ColorScale};
 use crate::profile::section::{angular_extent, most_informative_angle, oriented_frame, section_of_oriented, ProfileSection};
+use crate::statistics::central_range;
 use crate::{Error, Result};
 
 const BLACK: Rgb = [0, 0, 0];
@@ -479,15 +480,9 @@ fn occlusion_field(mesh: &Mesh, options: &DrawOptions) -> Result<OcclusionField>
     let (lo, hi) = mesh.bounding_box().ok_or_else(|| Error::DegenerateGeometry("no vertex to shade".into()))?;
     let reach_mm = ((hi - lo).norm() * NEAR_OCCLUSION_REACH_SHARE).max(1e-6);
     let light = near_and_far_light(mesh, &options.occlusion, reach_mm)?;
-    let near = smooth_over_neighbours(mesh, light.near, 4);
-    let full = smooth_over_neighbours(mesh, light.full, 4);
+    let (near, full) = rayon::join(|| smooth_over_neighbours(mesh, light.near, 4), || smooth_over_neighbours(mesh, light.full, 4));
     let far_factor: Vec<f32> = full.iter().zip(&near).map(|(&f, &n)| if n > 0.0 { (f / n).min(1.0) } else { 1.0 }).collect();
-    let mut sorted: Vec<f32> = full.iter().copied().filter(|v| v.is_finite()).collect();
-    sorted.sort_by(f32::total_cmp);
-    let (low, high) = match sorted.len() {
-        0 => (0.0, 1.0),
-        n => (sorted[n * 2 / 100], sorted[(n * 98 / 100).min(n - 1)]),
-    };
+    let (low, high) = central_range(full.iter().copied()).unwrap_or((0.0, 1.0));
     Ok(OcclusionField { near, far_factor, low, span: (high - low).max(1e-6) })
 }
 

@@ -102,7 +102,9 @@ fn light_from_directions(mesh: &Mesh, options: &OcclusionOptions, reach_mm: Opti
                     }
                     _ => ZBuffer::new(camera.width, camera.height),
                 };
-                let projected = camera.project_all(&mesh.positions);
+                // One direction per task already: projecting in parallel too only adds
+                // the splitting.
+                let projected: Vec<[f32; 3]> = mesh.positions.iter().map(|p| camera.project(p)).collect();
                 rasterize_into(&mut buffer, &projected, &mesh.triangles);
                 for (f, tri) in mesh.triangles.iter().enumerate() {
                     let cosine = normals[f].dot(sky) as f32;
@@ -117,14 +119,16 @@ fn light_from_directions(mesh: &Mesh, options: &OcclusionOptions, reach_mm: Opti
                     // slope-scaled bias absorbs the map's sampling: larger ones hide the
                     // grazing self-occlusion of rough surfaces that MeshLab's rays see
                     // (tuned on A011 against pymeshlab, tests/occlusion.rs).
-                    let tangent = (1.0 - cosine * cosine).sqrt() / cosine.max(0.2);
-                    let bias = pixel_mm as f32 * (0.05 + 0.2 * tangent);
-                    let occluder_distance_mm = if owns_nearby_pixel(&buffer, p[0], p[1], f as u32) {
+                    let around = Neighbourhood::of(&buffer, p[0], p[1]);
+                    let occluder_distance_mm = if owns_nearby_pixel(&buffer, &around, f as u32) {
                         f32::INFINITY
                     } else {
-                        p[2] - bilinear_depth(&buffer, p[0], p[1])
+                        p[2] - bilinear_depth(&buffer, &around, p[0], p[1])
                     };
-                    let open = occluder_distance_mm <= bias || occluder_distance_mm == f32::INFINITY;
+                    let open = occluder_distance_mm == f32::INFINITY || {
+                        let tangent = (1.0 - cosine * cosine).sqrt() / cosine.max(0.2);
+                        occluder_distance_mm <= pixel_mm as f32 * (0.05 + 0.2 * tangent)
+                    };
                     if open {
                         full[f] += cosine;
                     }
@@ -163,11 +167,30 @@ fn light_from_directions(mesh: &Mesh, options: &OcclusionOptions, reach_mm: Opti
     Ok(NearAndFarLight { full: to_vertices(&full_light), near: to_vertices(&near_light) })
 }
 
+/// The four pixels whose centres surround a point: the top-left one's column and row and,
+/// when all four lie in the buffer (as they do but at its border), its index.
+struct Neighbourhood {
+    x0: i64,
+    y0: i64,
+    index: Option<usize>,
+}
+
+impl Neighbourhood {
+    fn of(buffer: &ZBuffer, x: f32, y: f32) -> Self {
+        let (x0, y0) = (floor_to_i64(x - 0.5), floor_to_i64(y - 0.5));
+        let inside = x0 >= 0 && y0 >= 0 && x0 < buffer.width as i64 - 1 && y0 < buffer.height as i64 - 1;
+        Neighbourhood { x0, y0, index: inside.then(|| y0 as usize * buffer.width + x0 as usize) }
+    }
+}
+
 /// True when one of the four pixel centres around `(x, y)` shows `face`.
-fn owns_nearby_pixel(buffer: &ZBuffer, x: f32, y: f32, face: u32) -> bool {
-    let (x0, y0) = (floor_to_i64(x - 0.5), floor_to_i64(y - 0.5));
+fn owns_nearby_pixel(buffer: &ZBuffer, around: &Neighbourhood, face: u32) -> bool {
+    if let Some(i) = around.index {
+        let w = buffer.width;
+        return [i, i + 1, i + w, i + w + 1].iter().any(|&j| buffer.face[j] == face);
+    }
     for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
-        let (px, py) = (x0 + dx, y0 + dy);
+        let (px, py) = (around.x0 + dx, around.y0 + dy);
         if px >= 0 && py >= 0 && px < buffer.width as i64 && py < buffer.height as i64 && buffer.face[py as usize * buffer.width + px as usize] == face {
             return true;
         }
@@ -177,19 +200,18 @@ fn owns_nearby_pixel(buffer: &ZBuffer, x: f32, y: f32, face: u32) -> bool {
 
 /// The depth bilinearly interpolated at `(x, y)`; infinite (open sky) next to an empty
 /// pixel or the border.
-fn bilinear_depth(buffer: &ZBuffer, x: f32, y: f32) -> f32 {
-    let (fx, fy) = (x - 0.5, y - 0.5);
-    let (x0, y0) = (floor_to_i64(fx), floor_to_i64(fy));
-    let (tx, ty) = (fx - x0 as f32, fy - y0 as f32);
+fn bilinear_depth(buffer: &ZBuffer, around: &Neighbourhood, x: f32, y: f32) -> f32 {
+    let Some(i) = around.index else { return f32::INFINITY };
+    let w = buffer.width;
+    let (tx, ty) = ((x - 0.5) - around.x0 as f32, (y - 0.5) - around.y0 as f32);
+    let weights = [(1.0 - tx) * (1.0 - ty), tx * (1.0 - ty), (1.0 - tx) * ty, tx * ty];
     let mut sum = 0.0;
-    for (dx, dy, w) in [(0, 0, (1.0 - tx) * (1.0 - ty)), (1, 0, tx * (1.0 - ty)), (0, 1, (1.0 - tx) * ty), (1, 1, tx * ty)] {
-        let (px, py) = (x0 + dx, y0 + dy);
-        if px < 0 || py < 0 || px >= buffer.width as i64 || py >= buffer.height as i64 {
+    for (j, weight) in [i, i + 1, i + w, i + w + 1].into_iter().zip(weights) {
+        let d = buffer.depth[j];
+        if !d.is_finite() {
             return f32::INFINITY;
         }
-        let d = buffer.depth[py as usize * buffer.width + px as usize];
-        if !d.is_finite() { return f32::INFINITY; }
-        sum += w * d;
+        sum += weight * d;
     }
     sum
 }

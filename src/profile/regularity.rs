@@ -13,6 +13,7 @@ use rayon::prelude::*;
 use crate::mesh::Mesh;
 use crate::orient::Axis;
 use crate::profile::section::{oriented_positions, polygon_signed_area, ProfileSection};
+use crate::statistics::central_range;
 use crate::{Error, Result};
 
 /// Distance of every vertex to the axis, in millimetres.
@@ -57,6 +58,8 @@ struct SegmentGrid {
     columns: usize,
     rows: usize,
     cells: Vec<Vec<u32>>,
+    /// The cells each segment is listed in: first and last column, first and last row.
+    cell_ranges: Vec<[i64; 4]>,
 }
 
 impl SegmentGrid {
@@ -75,18 +78,20 @@ impl SegmentGrid {
         let columns = ((hi[0] - lo[0]) / cell_mm) as usize + 1;
         let rows = ((hi[1] - lo[1]) / cell_mm) as usize + 1;
         let mut cells = vec![Vec::new(); columns * rows];
+        let mut cell_ranges = Vec::with_capacity(segments.len());
         for (i, s) in segments.iter().enumerate() {
             let c0 = ((s[0][0].min(s[1][0]) - lo[0]) / cell_mm) as usize;
             let c1 = (((s[0][0].max(s[1][0]) - lo[0]) / cell_mm) as usize).min(columns - 1);
             let r0 = ((s[0][1].min(s[1][1]) - lo[1]) / cell_mm) as usize;
             let r1 = (((s[0][1].max(s[1][1]) - lo[1]) / cell_mm) as usize).min(rows - 1);
+            cell_ranges.push([c0, c1, r0, r1].map(|v| v as i64));
             for r in r0..=r1 {
                 for c in c0..=c1 {
                     cells[r * columns + c].push(i as u32);
                 }
             }
         }
-        SegmentGrid { segments, origin: lo, cell_mm, columns, rows, cells }
+        SegmentGrid { segments, origin: lo, cell_mm, columns, rows, cells, cell_ranges }
     }
 
     /// Distance to the nearest segment, signed by which side of it `p` lies on.
@@ -96,14 +101,27 @@ impl SegmentGrid {
         // and their count is the grid's size, not the point's distance in cells (which
         // for a tiny outline and a far vertex was billions: the pipeline fuzz target's
         // hang, fuzz/regressions/pipeline/).
-        let column = (((p[0] - self.origin[0]) / self.cell_mm).floor() as i64).clamp(0, self.columns as i64 - 1);
-        let row = (((p[1] - self.origin[1]) / self.cell_mm).floor() as i64).clamp(0, self.rows as i64 - 1);
+        let (x, y) = ((p[0] - self.origin[0]) / self.cell_mm, (p[1] - self.origin[1]) / self.cell_mm);
+        let column = (x.floor() as i64).clamp(0, self.columns as i64 - 1);
+        let row = (y.floor() as i64).clamp(0, self.rows as i64 - 1);
+        // How far p lies inside its own cell (0 outside the grid): the cells of ring k lie
+        // at least (k - 1) cells and this inset away.
+        let inset_mm =
+            (x - column as f64).min(column as f64 + 1.0 - x).min(y - row as f64).min(row as f64 + 1.0 - y).max(0.0) * self.cell_mm;
         let (mut best, mut best_side) = (f64::INFINITY, 0.0);
-        let visit = |c: i64, r: i64, best: &mut f64, best_side: &mut f64| {
+        // `inner`: the rings already visited, when this ring's own segments are too far to
+        // change the best (see below).
+        let visit = |c: i64, r: i64, inner: Option<i64>, best: &mut f64, best_side: &mut f64| {
             if c < 0 || r < 0 || c >= self.columns as i64 || r >= self.rows as i64 {
                 return;
             }
             for &s in &self.cells[r as usize * self.columns + c as usize] {
+                if let Some(inner) = inner {
+                    let [c0, c1, r0, r1] = self.cell_ranges[s as usize];
+                    if c0 > column + inner || c1 < column - inner || r0 > row + inner || r1 < row - inner {
+                        continue;
+                    }
+                }
                 let [a, b] = self.segments[s as usize];
                 let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
                 let length2 = dx * dx + dy * dy;
@@ -125,10 +143,16 @@ impl SegmentGrid {
             if ring > 0 && (ring - 1) as f64 * self.cell_mm > best {
                 break;
             }
+            // A segment listed in no inner ring lies wholly in this ring or beyond, farther
+            // than the best plus the tie margin (with room for rounding): it cannot change
+            // the best, and only the inner rings' segments listed here again are measured,
+            // as the search always did, so that the ties go as they did.
+            let far = ring > 0 && (ring - 1) as f64 * self.cell_mm + inset_mm > best + 1e-12 + 1e-9;
+            let inner = far.then_some(ring - 1);
             for c in column - ring..=column + ring {
                 for r in row - ring..=row + ring {
                     if (c - column).abs() == ring || (r - row).abs() == ring {
-                        visit(c, r, &mut best, &mut best_side);
+                        visit(c, r, inner, &mut best, &mut best_side);
                     }
                 }
             }
@@ -181,12 +205,8 @@ impl ColorMap {
     /// A map spanning the 2nd to 98th percentile of `values` (robust to a few outliers);
     /// a diverging map is made symmetric about 0.
     pub fn fitted(values: &[f32], scale: ColorScale, title: &str, unit: &str) -> Self {
-        let mut finite: Vec<f32> = values.iter().copied().filter(|v| v.is_finite()).collect();
-        finite.sort_by(f32::total_cmp);
-        let (mut low, mut high) = match finite.len() {
-            0 => (0.0, 1.0),
-            n => (finite[n * 2 / 100] as f64, finite[(n * 98 / 100).min(n - 1)] as f64),
-        };
+        let (low, high) = central_range(values.iter().copied()).unwrap_or((0.0, 1.0));
+        let (mut low, mut high) = (low as f64, high as f64);
         if scale == ColorScale::Diverging {
             let m = low.abs().max(high.abs());
             (low, high) = (-m, m);
@@ -299,6 +319,70 @@ mod tests {
         let bumped = distance_to_ideal_vessel(&mesh, &axis, &section).unwrap();
         assert!((bumped[far] - 2.0).abs() < 0.05, "bulge {}", bumped[far]);
         assert!((bumped[dent] + 1.0).abs() < 0.05, "groove {}", bumped[dent]);
+    }
+
+    /// [`SegmentGrid::signed_distance`] measuring every segment of every ring it visits.
+    fn signed_distance_every_ring(grid: &SegmentGrid, p: [f64; 2]) -> f64 {
+        let column = (((p[0] - grid.origin[0]) / grid.cell_mm).floor() as i64).clamp(0, grid.columns as i64 - 1);
+        let row = (((p[1] - grid.origin[1]) / grid.cell_mm).floor() as i64).clamp(0, grid.rows as i64 - 1);
+        let (mut best, mut best_side) = (f64::INFINITY, 0.0f64);
+        for ring in 0..=grid.columns.max(grid.rows) as i64 {
+            if ring > 0 && (ring - 1) as f64 * grid.cell_mm > best {
+                break;
+            }
+            for c in column - ring..=column + ring {
+                for r in row - ring..=row + ring {
+                    let on_ring = (c - column).abs() == ring || (r - row).abs() == ring;
+                    if !on_ring || c < 0 || r < 0 || c >= grid.columns as i64 || r >= grid.rows as i64 {
+                        continue;
+                    }
+                    for &s in &grid.cells[r as usize * grid.columns + c as usize] {
+                        let [a, b] = grid.segments[s as usize];
+                        let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                        let length2 = dx * dx + dy * dy;
+                        let t = if length2 > 0.0 { (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / length2).clamp(0.0, 1.0) } else { 0.0 };
+                        let (qx, qy) = (a[0] + t * dx - p[0], a[1] + t * dy - p[1]);
+                        let d = (qx * qx + qy * qy).sqrt();
+                        let side = -(dx * (p[1] - a[1]) - dy * (p[0] - a[0])) / length2.sqrt().max(1e-300);
+                        if d < best - 1e-12 || (d < best + 1e-12 && side.abs() > best_side.abs()) {
+                            (best, best_side) = (d, side);
+                        }
+                    }
+                }
+            }
+        }
+        if best_side >= 0.0 { best } else { -best }
+    }
+
+    #[test]
+    fn skipping_far_segments_changes_no_distance() {
+        // A wavy closed outline of long and short segments (some spanning many cells),
+        // points on it, at its vertices, near it, inside, and far outside the grid.
+        let outline: Vec<[f64; 2]> = (0..400)
+            .map(|i| {
+                let t = i as f64 / 400.0 * std::f64::consts::TAU;
+                let r = 30.0 + 3.0 * (7.0 * t).sin() + if i % 50 < 3 { 8.0 } else { 0.0 };
+                [r * t.cos(), 0.5 * r * t.sin()]
+            })
+            .collect();
+        let segments: Vec<[[f64; 2]; 2]> = (0..outline.len()).map(|i| [outline[i], outline[(i + 1) % outline.len()]]).collect();
+        let grid = SegmentGrid::new(segments);
+        let mut state = 99u64;
+        let mut random = move || {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut points: Vec<[f64; 2]> = outline.clone();
+        points.extend(outline.windows(2).map(|w| [(w[0][0] + w[1][0]) / 2.0, (w[0][1] + w[1][1]) / 2.0]));
+        for _ in 0..20_000 {
+            points.push([random() * 90.0 - 45.0, random() * 50.0 - 25.0]);
+        }
+        for _ in 0..200 {
+            points.push([random() * 4000.0 - 2000.0, random() * 4000.0 - 2000.0]);
+        }
+        for p in points {
+            assert_eq!(grid.signed_distance(p).to_bits(), signed_distance_every_ring(&grid, p).to_bits(), "{p:?}");
+        }
     }
 
     #[test]

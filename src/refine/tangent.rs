@@ -67,9 +67,11 @@ struct SectionCandidates {
 
 impl SectionCandidates {
     fn new(mut points: Vec<(usize, Point)>, edge: Edge) -> Self {
+        // Ties in section order: what a stable sort of the points as they come (in that
+        // order) gives, at the cost of an unstable sort.
         match edge {
-            Edge::Rim => points.sort_by(|a, b| b.1.z.total_cmp(&a.1.z)),
-            Edge::Base => points.sort_by(|a, b| a.1.z.total_cmp(&b.1.z)),
+            Edge::Rim => points.sort_unstable_by(|a, b| b.1.z.total_cmp(&a.1.z).then(a.0.cmp(&b.0))),
+            Edge::Base => points.sort_unstable_by(|a, b| a.1.z.total_cmp(&b.1.z).then(a.0.cmp(&b.0))),
         }
         let count = points.len().max(1) as f64;
         let centre_xy = [
