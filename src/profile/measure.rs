@@ -36,7 +36,9 @@ pub struct MeasureOptions {
     /// ([`crate::orient::landscape::valley_width`]); added in quadrature to the
     /// bootstrap's intervals (the turn to the distance interval as the distance it moves
     /// the sherd's points). The bootstrap resamples the scan's noise only; a vessel's
-    /// ovality and wobble bias every resample alike, and widen the valley instead.
+    /// ovality and wobble bias every resample alike, and widen the valley instead. A NaN
+    /// turn (an axis levelled by its tangent plane, whose turn the level edge fixes)
+    /// widens the position interval alone.
     pub axis_valley_width: Option<(f64, f64)>,
 }
 
