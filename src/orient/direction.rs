@@ -291,6 +291,11 @@ const END_DEPTH_SPACINGS: f64 = 2.0;
 /// Steepest tilt of a level edge allowed for the error of the axis and a hand-made
 /// rim's slant (tangent of about 3 degrees).
 const MAX_EDGE_TILT: f64 = 0.05;
+/// A run of level sections goes on across this many consecutive sections out of the
+/// band: a rough lip's end leaves the band in single sections (a spike of roughness, a
+/// hole of the scan), which cut its arc into short runs that no longer tell it from a
+/// break.
+const MAX_RUN_GAP_SECTIONS: usize = 1;
 /// Band below the outermost end within which a section's end counts as on the level
 /// edge, mm, for points spaced under a millimetre (a decimated scan of an ordinary sherd).
 const LEVEL_BAND_MM: f64 = 0.3;
@@ -331,7 +336,8 @@ fn level_measures(values: &[f64], lever: &[[f64; 2]], band_mm: f64) -> (f64, f64
             best_spread = best_spread.min(upper_median(&deviations));
             // The edge is the band holding the most sections' ends (the outermost ends can
             // be a corner where a break meets the lip, or a spike of the scan); a rim is
-            // one arc: the longest run of neighbouring sections in that band.
+            // one arc: the longest run of neighbouring sections in that band, across
+            // single sections out of it.
             let top = detilted
                 .iter()
                 .copied()
@@ -340,9 +346,17 @@ fn level_measures(values: &[f64], lever: &[[f64; 2]], band_mm: f64) -> (f64, f64
                     count(*a).cmp(&count(*b)).then(a.total_cmp(b))
                 })
                 .expect("sections");
-            let (mut run, mut longest) = (0usize, 0usize);
+            let (mut run, mut gap, mut longest) = (0usize, 0usize, 0usize);
             for v in &detilted {
-                run = if *v <= top && *v >= top - band_mm { run + 1 } else { 0 };
+                if *v <= top && *v >= top - band_mm {
+                    run += 1;
+                    gap = 0;
+                } else {
+                    gap += 1;
+                    if gap > MAX_RUN_GAP_SECTIONS {
+                        run = 0;
+                    }
+                }
                 longest = longest.max(run);
             }
             best_fraction = best_fraction.max(longest as f64 / values.len() as f64);
@@ -441,8 +455,8 @@ fn wall_share(samples: &[Sample]) -> f64 {
 /// surface (normal within [`FLOOR_NORMAL_DEG`] of the axis) of at least `min_share` of the
 /// piece reaches inside `max_inner_radius_ratio` of the median radius of the rest of the
 /// piece (normals farther than [`RISE_NORMAL_DEG`] from the axis: a wall, or a plate's low
-/// rise), and the rest lies clear of it on one side, outside it: the wall rises from the
-/// floor. The rest need not be steep: a dish's floor turns into a wall a few degrees from
+/// rise), and the rest reaches past the floor's two faces on one side more than on the
+/// other: the wall rises from the floor. The rest need not be steep: a dish's floor turns into a wall a few degrees from
 /// flat, which the floor's own normals already tell from it.
 fn floor_cue(samples: &[Sample], min_share: f64, max_inner_radius_ratio: f64) -> Option<f64> {
     let total: f64 = samples.iter().map(|s| s.weight).sum();
@@ -461,9 +475,16 @@ fn floor_cue(samples: &[Sample], min_share: f64, max_inner_radius_ratio: f64) ->
     if flat_inner_radius >= max_inner_radius_ratio * rest_radius || flat_radius >= rest_radius {
         return None;
     }
-    let flat_height = weighted_median(flat.iter().map(|s| (s.height, s.weight)));
-    let rest_height = weighted_median(rest.iter().map(|s| (s.height, s.weight)));
-    let rise = rest_height - flat_height;
+    // The wall rises from both faces of the floor: its outer skin from the underside, its
+    // inner skin from the floor's top, so the rest reaches past the floor's farther face
+    // on the rim's side and not on the other. Medians mislead where the piece holds only a
+    // stub of wall: the floor's two faces, weighted by what the scan kept of each, put the
+    // floor's median height on either face.
+    let flat_height = |fraction: f64| weighted_quantile(flat.iter().map(|s| (s.height, s.weight)), fraction);
+    let rest_height = |fraction: f64| weighted_quantile(rest.iter().map(|s| (s.height, s.weight)), fraction);
+    let reach_up = rest_height(1.0 - FLOOR_EXTREME_QUANTILE) - flat_height(1.0 - FLOOR_EXTREME_QUANTILE);
+    let reach_down = flat_height(FLOOR_EXTREME_QUANTILE) - rest_height(FLOOR_EXTREME_QUANTILE);
+    let rise = reach_up - reach_down;
     (rise.abs() >= MIN_FLOOR_RISE_MM).then(|| rise.signum())
 }
 
@@ -473,10 +494,13 @@ const FLOOR_NORMAL_DEG: f64 = 8.0;
 /// The rest of a base piece turns farther than this from the axis, degrees: a dish's
 /// floor turns into a wall rising a few degrees from flat.
 const RISE_NORMAL_DEG: f64 = FLOOR_NORMAL_DEG;
-/// The rest of the piece must lie at least this far above (or below) the floor along the
-/// axis for the floor to tell which way is up, mm: several times a smoothed scan's noise,
-/// in medians over hundreds of points.
+/// The rest of the piece must reach at least this much farther past the floor on one side
+/// than on the other, along the axis, for the floor to tell which way is up, mm: several
+/// times a smoothed scan's noise, in quantiles over hundreds of points.
 const MIN_FLOOR_RISE_MM: f64 = 0.25;
+/// The quantile of the heights that stands for a surface's lowest (and, from the top, its
+/// highest) reach: clear of single points off the scan, within the floor's faces.
+const FLOOR_EXTREME_QUANTILE: f64 = 0.1;
 
 /// The area-weighted mean slope `dr/dz` of the wall. The tangent `(dr, dz)` of the
 /// profile is normal to `(n_r, n_z)` on either skin (the inner skin's normal is the
@@ -627,6 +651,55 @@ mod tests {
             let (cue, text) = level_edge_cue(&ends);
             assert!(cue.abs() < 0.5, "body seed {seed}: {text} ({ends:?})");
         }
+    }
+
+    /// A base piece with only a stub of wall: the floor's top face outweighs its underside
+    /// (or the other way), which puts the floor's median height on either face; the wall's
+    /// reach past the faces still says which way it rises, and the reversed axis reads the
+    /// other way.
+    #[test]
+    fn a_stub_of_wall_tells_the_floor_whichever_face_weighs_more() {
+        let sample = |radius: f64, height: f64, normal_axial: f64, weight: f64| Sample {
+            radius,
+            height,
+            normal_radial: (1.0 - normal_axial * normal_axial).sqrt(),
+            normal_axial,
+            weight,
+        };
+        for (top_weight, under_weight) in [(3.0, 1.0), (1.0, 3.0)] {
+            let mut samples = Vec::new();
+            for i in 0..200 {
+                let radius = 10.0 + 0.2 * i as f64;
+                samples.push(sample(radius, 4.0, 1.0, top_weight));
+                samples.push(sample(radius, 0.0, -1.0, under_weight));
+            }
+            // The wall's stub at the floor's edge: the outer skin from the underside, the
+            // inner skin from the top, both ending 1.5 mm above the top.
+            for i in 0..30 {
+                samples.push(sample(55.0, 5.5 * i as f64 / 29.0, 0.0, 1.0));
+                samples.push(sample(50.0, 4.0 + 1.5 * i as f64 / 29.0, 0.0, 1.0));
+            }
+            let up = floor_cue(&samples, MIN_FLOOR_SHARE, FLOOR_INNER_RADIUS_RATIO);
+            for s in &mut samples {
+                s.height = -s.height;
+                s.normal_axial = -s.normal_axial;
+            }
+            let down = floor_cue(&samples, MIN_FLOOR_SHARE, FLOOR_INNER_RADIUS_RATIO);
+            assert_eq!((up, down), (Some(1.0), Some(-1.0)), "faces weighted {top_weight} (top) and {under_weight} (underside)");
+        }
+    }
+
+    /// A rim whose end leaves the level band in one section (a spike of roughness, a hole)
+    /// is still one arc (the section out of it not counted); two sections out of it in a
+    /// row cut it.
+    #[test]
+    fn a_level_run_goes_on_across_one_section_out_of_the_band() {
+        let lever = vec![[0.0, 0.0]; 10];
+        let mut values = vec![0.0; 10];
+        values[5] = -2.0;
+        assert_eq!(level_measures(&values, &lever, 0.3).1, 0.9);
+        values[6] = -2.0;
+        assert_eq!(level_measures(&values, &lever, 0.3).1, 0.5);
     }
 
     /// A floor decides against a level edge (the level end is its own foot); a small floor
