@@ -2,12 +2,16 @@
 //! archaeological illustrations.
 //!
 //! The crate is a pipeline of layers, each depending only on the ones listed before it
-//! (and on [`statistics`], the order statistics they share):
+//! (`tests/layers.rs` checks every `crate::` path against this order):
 //!
+//! * [`error`]: the error type every layer returns.
+//! * [`statistics`]: the order statistics the layers share.
 //! * [`mesh`]: the [`mesh::Mesh`] type, scan readers and writers, repair, normals,
 //!   decimation, smoothing, spatial queries.
+//! * [`axis`]: the rotation axis ([`axis::Axis`]), its JSON form and the distances
+//!   between axes, shared by the layers after it.
 //! * [`synth`]: synthetic sherds with known axes, the test bed of every later layer.
-//! * [`orient`]: the rotation axis ([`orient::Axis`]) from normals or three points
+//! * [`orient`]: the rotation axis from normals or three points
 //!   (Wilczek et al. 2018, section 2.2).
 //! * [`refine`]: refinement criteria (section 2.3): circles, Pareto, profile, tangent.
 //! * [`profile`]: sections in the rz-plane, measurements, revolution, regularity.
@@ -19,6 +23,7 @@
 pub mod error;
 pub mod statistics;
 pub mod mesh;
+pub mod axis;
 pub mod synth;
 pub mod orient;
 pub mod refine;

@@ -3,7 +3,10 @@
 //! orientation and the refinement both need them and neither may depend on the other's
 //! code.
 
-use crate::mesh::{Point, Vector};
+// The same types as `mesh::Point` and `mesh::Vector`, named here so that the statistics
+// sit below the mesh layer that uses them.
+type Point = nalgebra::Point3<f64>;
+type Vector = nalgebra::Vector3<f64>;
 
 /// The `fraction` quantile of `values`, interpolated linearly between the two nearest
 /// ranks (reorders `values` in place).

@@ -18,7 +18,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::axis::Axis;
+use crate::axis::Axis;
 use super::normal_lines::NormalLines;
 use crate::mesh::{Point, Vector};
 use crate::statistics::{upper_median, weighted_median, weighted_quantile};

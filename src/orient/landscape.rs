@@ -6,7 +6,7 @@
 //! losses are tested against their own spread (a one-sided t statistic). The scan's noise
 //! and the vessel's deformation enter through that spread, whatever their size.
 
-use super::axis::Axis;
+use crate::axis::Axis;
 use super::revolution_search::{point_losses, Landscape, RevolutionSamples};
 use crate::mesh::{Point, Vector};
 use crate::statistics::principal_axes;

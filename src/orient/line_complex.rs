@@ -21,7 +21,7 @@ use nalgebra::{Matrix3, SymmetricEigen, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-use super::axis::Axis;
+use crate::axis::Axis;
 use crate::mesh::{Point, Vector};
 
 /// Lines moved to their weighted centroid and divided by their size, so that the

@@ -9,7 +9,6 @@
 //! [`mm_regression`]) -> leave-one-region-out stability ([`region_stability`]) -> sense base to rim ([`direction`]) -> verdict ([`verdict`]).
 
 pub mod accuracy;
-pub mod axis;
 pub mod direction;
 pub mod halir;
 pub mod landscape;
@@ -27,7 +26,7 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-pub use axis::{angle_between_deg, mean_point_distance_mm, Axis, AxisRecord};
+pub use crate::axis::{angle_between_deg, mean_point_distance_mm, Axis, AxisRecord};
 pub use surfaces::{segment_surfaces, Skin};
 pub use verdict::{Verdict, VerdictThresholds};
 

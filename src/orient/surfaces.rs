@@ -5,7 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::axis::Axis;
+use crate::axis::Axis;
 use super::normal_lines::NormalLines;
 use crate::mesh::{Mesh, Point, Vector};
 use crate::Result;

@@ -7,7 +7,7 @@
 use nalgebra::{Matrix3, SymmetricEigen};
 use serde::{Deserialize, Serialize};
 
-use super::axis::Axis;
+use crate::axis::Axis;
 use super::halir::HalirFit;
 use crate::statistics::weighted_median_abs;
 use super::normal_lines::NormalLines;

@@ -30,7 +30,7 @@ pub use write::{read_truth, write_sherd};
 
 use crate::mesh::normals::{compute_vertex_normals, NormalWeighting};
 use crate::mesh::{Mesh, Point, Vector};
-use crate::orient::Axis;
+use crate::axis::Axis;
 use colour::ClayColour;
 use fracture::{clean_mask, mid_surface_point, RoughVoronoi};
 use revolve::{build_shell, ParamGrid, Shell};

@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use super::deform::Deformation;
 use super::profile::{RimForm, VesselShape};
 use crate::mesh::Point;
-use crate::orient::{Axis, AxisRecord};
+use crate::axis::{Axis, AxisRecord};
 
 /// Which part of the vessel a fragment comes from (the archaeologist's classification).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]

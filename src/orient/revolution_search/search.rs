@@ -6,7 +6,7 @@ use rayon::prelude::*;
 use super::position::{fit_direction_with, DirectionFit};
 use super::samples::RevolutionSamples;
 use crate::mesh::Vector;
-use crate::orient::axis::Axis;
+use crate::axis::Axis;
 use crate::orient::halir::perpendicular_frame;
 use crate::orient::normal_lines::NormalLines;
 
