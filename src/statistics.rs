@@ -126,6 +126,22 @@ pub fn weighted_median_abs(values: &[f64], weights: &[f64]) -> f64 {
     if median.is_nan() { 0.0 } else { median }
 }
 
+/// The two-sided 95% point of Student's t distribution with `degrees_of_freedom`: what a
+/// standard error estimated from that few replicates is multiplied by for a 95% interval
+/// (the normal's 1.96 holds only for many). Tabulated to 30 degrees of freedom, the
+/// normal's point beyond; `None` for 0.
+pub fn student_t_95(degrees_of_freedom: usize) -> Option<f64> {
+    const TABLE: [f64; 30] = [
+        12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228, 2.201, 2.179, 2.160, 2.145, 2.131, 2.120, 2.110, 2.101,
+        2.093, 2.086, 2.080, 2.074, 2.069, 2.064, 2.060, 2.056, 2.052, 2.048, 2.045, 2.042,
+    ];
+    match degrees_of_freedom {
+        0 => None,
+        d if d <= TABLE.len() => Some(TABLE[d - 1]),
+        _ => Some(1.960),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

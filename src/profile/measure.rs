@@ -18,7 +18,7 @@ use crate::orient::{mean_point_distance_mm, Axis};
 use crate::refine::sections::{sector_angle_rad, vertical_sections, PreparedSurface, Skin, Surface};
 use crate::statistics::quantile;
 use crate::refine::tangent::Edge;
-use crate::refine::sector_jackknife::{jackknife_standard_error, sector_jackknife_axes};
+use crate::refine::sector_jackknife::{jackknife_half_width_95, sector_jackknife_axes};
 use crate::refine::uncertainty::{angle_interval_deg, bootstrap_axes, distance_interval_mm, value_interval, BootstrapOptions};
 use crate::refine::{detect_edges_over, RefineOptions, EDGE_LEVEL_FRACTION};
 
@@ -146,10 +146,6 @@ pub const MAX_UNFLAGGED_AXIS_DISTANCE_MM: f64 = 5.0;
 /// of the arc changes what the deformation says. Set on the synthetic corpus without scan
 /// noise, where right axes moved 0.16 mm on median (`docs/calibration.md`).
 pub const MAX_UNFLAGGED_SECTOR_MOVE_MM: f64 = 1.5;
-
-/// The normal distribution's two-sided 95% point: the sector jackknife's standard error
-/// times this widens the 95% intervals.
-const JACKKNIFE_Z: f64 = 1.96;
 
 /// How each of [`Measurements::axis_doubts`] begins when it is repeated among the notes.
 pub const AXIS_DOUBT_NOTE: &str = "the axis is uncertain: ";
@@ -454,11 +450,11 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
             let jackknife_moves_mm: Vec<f64> =
                 jackknife_axes.iter().map(|refined| mean_point_distance_mm(&bootstrap_mesh.positions, refined, axis)).collect();
             let jackknife_turns_deg: Vec<f64> = jackknife_axes.iter().map(|refined| refined.line_angle_to_deg(axis)).collect();
-            if let Some(error_deg) = jackknife_standard_error(&jackknife_turns_deg) {
-                widen(&mut measurements.axis_angle_interval_deg, JACKKNIFE_Z * error_deg);
+            if let Some(half_width_deg) = jackknife_half_width_95(&jackknife_turns_deg) {
+                widen(&mut measurements.axis_angle_interval_deg, half_width_deg);
             }
-            if let Some(error_mm) = jackknife_standard_error(&jackknife_moves_mm) {
-                widen(&mut measurements.axis_distance_interval_mm, JACKKNIFE_Z * error_mm);
+            if let Some(half_width_mm) = jackknife_half_width_95(&jackknife_moves_mm) {
+                widen(&mut measurements.axis_distance_interval_mm, half_width_mm);
             }
             if let Some([_, upper]) = measurements.axis_angle_interval_deg.filter(|i| i[1] > MAX_UNFLAGGED_AXIS_INTERVAL_DEG) {
                 measurements.axis_doubts.push(format!(
@@ -506,8 +502,8 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
                 };
                 let [low, high] = value_interval(estimate, &values, estimate * floor_fraction, &options.bootstrap)?;
                 let deviations: Vec<f64> = jackknife_radii.iter().filter_map(|radii| radii[slot]).map(|r| r - estimate).collect();
-                let half_width = match jackknife_standard_error(&deviations) {
-                    Some(error) => ((high - low) / 2.0).hypot(JACKKNIFE_Z * error),
+                let half_width = match jackknife_half_width_95(&deviations) {
+                    Some(jackknife) => ((high - low) / 2.0).hypot(jackknife),
                     None => (high - low) / 2.0,
                 };
                 Some([2.0 * (estimate - half_width), 2.0 * (estimate + half_width)])

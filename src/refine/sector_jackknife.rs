@@ -15,7 +15,7 @@ use rayon::prelude::*;
 use super::{refine, RefineOptions};
 use crate::mesh::Mesh;
 use crate::orient::{mean_point_distance_mm, Axis};
-use crate::statistics::equal_count_bins;
+use crate::statistics::{equal_count_bins, student_t_95};
 
 /// Number of equal-count sectors of the arc, each left out in turn: a quarter still
 /// leaves three quarters of the arc to refine on, and costs four refinements.
@@ -56,6 +56,13 @@ pub fn jackknife_standard_error(deviations: &[f64]) -> Option<f64> {
     (n >= 2).then(|| ((n - 1) as f64 / n as f64 * deviations.iter().map(|d| d * d).sum::<f64>()).sqrt())
 }
 
+/// Half the width of the 95% interval the jackknife's `deviations` give: their standard
+/// error ([`jackknife_standard_error`]) times Student's t point with one degree of freedom
+/// fewer than the replicates, as a standard error from a few replicates calls for.
+pub fn jackknife_half_width_95(deviations: &[f64]) -> Option<f64> {
+    Some(jackknife_standard_error(deviations)? * student_t_95(deviations.len() - 1)?)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -72,5 +79,16 @@ mod tests {
         let jackknife = jackknife_standard_error(&leave_outs).unwrap();
         assert!((jackknife - sample_sd / n.sqrt()).abs() < 1e-12, "{jackknife} against {}", sample_sd / n.sqrt());
         assert_eq!(jackknife_standard_error(&[1.0]), None);
+    }
+
+    /// Four replicates leave three degrees of freedom: the interval is 3.182 standard
+    /// errors wide on each side, not the normal's 1.96.
+    #[test]
+    fn four_replicates_take_the_t_point_of_three_degrees_of_freedom() {
+        let deviations = [0.5, -1.0, 2.0, 0.25];
+        let error = jackknife_standard_error(&deviations).unwrap();
+        assert!((jackknife_half_width_95(&deviations).unwrap() - 3.182 * error).abs() < 1e-12);
+        assert_eq!(jackknife_half_width_95(&[1.0]), None);
+        assert_eq!(crate::statistics::student_t_95(1000), Some(1.960));
     }
 }
