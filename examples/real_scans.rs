@@ -8,7 +8,7 @@
 use std::path::Path;
 
 use sherd::mesh::Point;
-use sherd::pipeline::{analyse, analyse_file, Analysis, PipelineOptions, SherdRecord};
+use sherd::pipeline::{analyse, analyse_file, Analysis, PipelineOptions, RecordStatus, SherdRecord};
 
 /// Three points on A011's longest wheel rill, in the scan's frame (the README's example).
 const A011_RILL_POINTS: [[f64; 3]; 3] = [[30.508, -66.920, 39.363], [18.614, -75.548, 43.705], [8.663, -86.138, 42.986]];
@@ -22,7 +22,7 @@ fn row(name: &str, analysis: &Analysis, reference: &sherd::orient::Axis, referen
     println!(
         "| {name} | {} | {line_deg:.2} deg from {reference_name} | {} | {rills} |",
         record.status,
-        if record.status == "needs_manual_orientation" || record.status == "sense_uncertain" { "-" } else if up { "yes" } else { "no" },
+        if matches!(record.status, RecordStatus::NeedsManualOrientation | RecordStatus::SenseUncertain) { "-" } else if up { "yes" } else { "no" },
     );
 }
 

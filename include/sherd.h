@@ -560,6 +560,115 @@ typedef uint32_t SherdRegularity;
 #endif // __cplusplus
 
 /**
+ * The `"status"` of a pipeline record (`sherd_analyse`, `sherd_process_file`), whose JSON
+ * writes it by name: list the names with `sherd_vocabulary_entry`.
+ */
+enum SherdRecordStatus
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * Oriented and measured.
+   */
+  SHERD_RECORD_STATUS_OK = 0,
+  /**
+   * Oriented and measured, but the axis is not pinned down: check it before using the
+   * figures.
+   */
+  SHERD_RECORD_STATUS_AXIS_UNCERTAIN = 1,
+  /**
+   * The axis line is found but not which way is up (base to rim).
+   */
+  SHERD_RECORD_STATUS_SENSE_UNCERTAIN = 2,
+  /**
+   * The data do not determine an axis: give three points.
+   */
+  SHERD_RECORD_STATUS_NEEDS_MANUAL_ORIENTATION = 3,
+  /**
+   * The scan could not be processed (the record's `"error"` says why).
+   */
+  SHERD_RECORD_STATUS_ERROR = 4,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdRecordStatus SherdRecordStatus;
+#else
+typedef uint32_t SherdRecordStatus;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
+ * The sets of named values `sherd_vocabulary_count`, `sherd_vocabulary_entry` and
+ * `sherd_vocabulary_value` list and parse: each names one enum of this header.
+ */
+enum SherdVocabulary
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : uint32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  /**
+   * `SHERD_CRITERION_*`.
+   */
+  SHERD_VOCABULARY_CRITERION = 0,
+  /**
+   * `SHERD_SURFACE_*`.
+   */
+  SHERD_VOCABULARY_SURFACE = 1,
+  /**
+   * `SHERD_PARETO_CHOICE_*`.
+   */
+  SHERD_VOCABULARY_PARETO_CHOICE = 2,
+  /**
+   * `SHERD_EDGE_*`.
+   */
+  SHERD_VOCABULARY_EDGE = 3,
+  /**
+   * `SHERD_PROFILE_METHOD_*`.
+   */
+  SHERD_VOCABULARY_PROFILE_METHOD = 4,
+  /**
+   * `SHERD_CIRCLE_FIT_*`.
+   */
+  SHERD_VOCABULARY_CIRCLE_FIT = 5,
+  /**
+   * `SHERD_STYLE_*` (bits).
+   */
+  SHERD_VOCABULARY_STYLE = 6,
+  /**
+   * `SHERD_ANNOTATION_*` (bits).
+   */
+  SHERD_VOCABULARY_ANNOTATION = 7,
+  /**
+   * `SHERD_SECTION_FILL_*`.
+   */
+  SHERD_VOCABULARY_SECTION_FILL = 8,
+  /**
+   * `SHERD_PLACEMENT_*`.
+   */
+  SHERD_VOCABULARY_PLACEMENT = 9,
+  /**
+   * `SHERD_REGULARITY_*`.
+   */
+  SHERD_VOCABULARY_REGULARITY = 10,
+  /**
+   * `SHERD_FORMAT_*`.
+   */
+  SHERD_VOCABULARY_FORMAT = 11,
+  /**
+   * `SHERD_RECORD_STATUS_*`: the `"status"` strings of pipeline records.
+   */
+  SHERD_VOCABULARY_RECORD_STATUS = 12,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum SherdVocabulary SherdVocabulary;
+#else
+typedef uint32_t SherdVocabulary;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
+/**
  * The fragments the orientation must refuse honestly (NEEDS_MANUAL_ORIENTATION).
  */
 typedef struct HardCase HardCase;
@@ -849,6 +958,30 @@ typedef struct {
   double circle_residual_mm2;
 } SherdParetoPoint;
 
+/**
+ * One named value of a vocabulary. Set `size` to `sizeof(SherdVocabularyEntry)` first.
+ * The strings are static, NUL-terminated UTF-8: never free them.
+ */
+typedef struct {
+  /**
+   * `sizeof(SherdVocabularyEntry)`, set by the caller.
+   */
+  size_t size;
+  /**
+   * The name users type and hosts show, e.g. `"circles"` (lower case, words joined by
+   * underscores): the name `sherd orient --refine`, Python and the add-ons take.
+   */
+  const char *name;
+  /**
+   * The value of the named constant, e.g. `SHERD_CRITERION_CIRCLES`.
+   */
+  uint32_t value;
+  /**
+   * What the value does, in one line: for a tooltip or a help text.
+   */
+  const char *description;
+} SherdVocabularyEntry;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -915,6 +1048,127 @@ SherdStatus sherd_drawing_to_buffer(const SherdDrawing *drawing,
  * `drawing` must be NULL or a live handle not freed before.
  */
 void sherd_drawing_free(SherdDrawing *drawing);
+
+/**
+ * Creates drawing options with the library's defaults (light and occlusion, 1:1,
+ * 300 dpi, black section, views beside the axis, interior view and prolongation on).
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_draw_options_new(SherdDrawOptions **out_options);
+
+/**
+ * Releases drawing options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_draw_options_free(SherdDrawOptions *options);
+
+/**
+ * The styles: a non-empty bitwise or of `SHERD_STYLE_*` values.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_style(SherdDrawOptions *options, uint32_t styles);
+
+/**
+ * Publication scale 1:`denominator` (1 to 100; 1 is natural size).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_scale_denominator(SherdDrawOptions *options,
+                                                     uint32_t denominator);
+
+/**
+ * Resolution of raster content and PNG output, dots per inch (10 to 4800).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_dpi(SherdDrawOptions *options, double dpi);
+
+/**
+ * Angle of the section about the axis, radians from the fragment's centroid; NaN picks
+ * the most informative profile (the default).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_section_angle_rad(SherdDrawOptions *options, double angle_rad);
+
+/**
+ * Section fill: a `SHERD_SECTION_FILL_*` value.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_section_fill(SherdDrawOptions *options, uint32_t fill);
+
+/**
+ * View placement: a `SHERD_PLACEMENT_*` value.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_placement(SherdDrawOptions *options, uint32_t placement);
+
+/**
+ * The map of the regularity style: a `SHERD_REGULARITY_*` value.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_regularity(SherdDrawOptions *options, uint32_t regularity);
+
+/**
+ * Whether the interior view is drawn left of the axis, and whether the outer profile is
+ * prolonged (dashed) to the full diameter.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_views(SherdDrawOptions *options,
+                                         bool interior_view,
+                                         bool prolongation);
+
+/**
+ * Whether the interior view is drawn between the section and the axis (default true);
+ * the `interior_view` of `sherd draw --interior-view`, Python, Blender and MeshLab.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_interior_view(SherdDrawOptions *options, bool interior_view);
+
+/**
+ * Whether the outer profile is prolonged, dashed, to the full diameter (default true).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_prolongation(SherdDrawOptions *options, bool prolongation);
+
+/**
+ * The measurements written under the drawing: a bitwise or of `SHERD_ANNOTATION_*`
+ * values, 0 for none (the default). Each is left out where it was not measured. Other
+ * bits are refused and leave the options as they were.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_draw_options_set_annotations(SherdDrawOptions *options, uint32_t annotations);
+
+/**
+ * A title (inventory number...) as a NUL-terminated UTF-8 string; NULL removes it.
+ *
+ * # Safety
+ * `options` must be a live handle; `title` NULL or a NUL-terminated string.
+ */
+SherdStatus sherd_draw_options_set_title(SherdDrawOptions *options, const char *title);
 
 /**
  * The message of the most recent call on this thread that did not return
@@ -1011,6 +1265,59 @@ SherdStatus sherd_measure(const SherdMesh *mesh,
                           const SherdMeasureOptions *options,
                           SherdMeasurements *out_measurements,
                           SherdBuffer **out_json);
+
+/**
+ * Creates measurement options with the library's defaults (intervals from a bootstrap
+ * of the default refinement).
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_measure_options_new(SherdMeasureOptions **out_options);
+
+/**
+ * Releases measurement options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_measure_options_free(SherdMeasureOptions *options);
+
+/**
+ * The refinement the intervals' bootstrap repeats: a copy of `refine_options` (pass the
+ * options the axis was refined with).
+ *
+ * # Safety
+ * `options` and `refine_options` must be live handles.
+ */
+SherdStatus sherd_measure_options_set_refine_options(SherdMeasureOptions *options,
+                                                     const SherdRefineOptions *refine_options);
+
+/**
+ * Number of bootstrap resamples behind the intervals (at most 10000); 0 gives no
+ * intervals (NaN), and so do fewer than 5 usable resamples.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_measure_options_set_bootstrap_samples(SherdMeasureOptions *options,
+                                                        size_t samples);
+
+/**
+ * Seed of the bootstrap's resampling (the same seed gives the same intervals).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_measure_options_set_bootstrap_seed(SherdMeasureOptions *options, uint64_t seed);
+
+/**
+ * Confidence level of the intervals, in (0, 1) (default 0.95).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_measure_options_set_confidence(SherdMeasureOptions *options, double confidence);
 
 /**
  * Creates a mesh from host arrays of double-precision positions.
@@ -1247,6 +1554,40 @@ SherdStatus sherd_mesh_repair(SherdMesh *mesh,
 SherdStatus sherd_mesh_decimate(const SherdMesh *mesh, size_t target_faces, SherdMesh **out_mesh);
 
 /**
+ * Creates repair options with the library's defaults.
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_repair_options_new(SherdRepairOptions **out_options);
+
+/**
+ * Releases repair options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_repair_options_free(SherdRepairOptions *options);
+
+/**
+ * Merges vertices closer than `tolerance_mm` (finite, positive); 0 merges only exact
+ * duplicates.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_repair_options_set_merge_tolerance_mm(SherdRepairOptions *options,
+                                                        double tolerance_mm);
+
+/**
+ * Keeps only the largest connected component (scanner debris removed) when `keep` is true.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_repair_options_set_keep_largest_component(SherdRepairOptions *options, bool keep);
+
+/**
  * Writes the rigid transform from the scan's frame to the oriented frame as a
  * row-major 4x4 matrix (`out_matrix[4 * row + column]`, 16 doubles) acting on column
  * vectors `(x, y, z, 1)`: the axis becomes the z axis, base down and rim up, and
@@ -1341,40 +1682,6 @@ SherdStatus sherd_points_on_longest_rill(const SherdMesh *mesh,
                                          size_t *out_point_count);
 
 /**
- * Creates repair options with the library's defaults.
- *
- * # Safety
- * `out_options` must be writable.
- */
-SherdStatus sherd_repair_options_new(SherdRepairOptions **out_options);
-
-/**
- * Releases repair options; NULL is ignored.
- *
- * # Safety
- * `options` must be NULL or a live handle, not freed before.
- */
-void sherd_repair_options_free(SherdRepairOptions *options);
-
-/**
- * Merges vertices closer than `tolerance_mm` (finite, positive); 0 merges only exact
- * duplicates.
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_repair_options_set_merge_tolerance_mm(SherdRepairOptions *options,
-                                                        double tolerance_mm);
-
-/**
- * Keeps only the largest connected component (scanner debris removed) when `keep` is true.
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_repair_options_set_keep_largest_component(SherdRepairOptions *options, bool keep);
-
-/**
  * Creates automatic-orientation options with the library's defaults (the paper's).
  *
  * # Safety
@@ -1454,296 +1761,6 @@ SherdStatus sherd_manual_options_set_keep_fraction(SherdManualOptions *options,
  */
 SherdStatus sherd_manual_options_set_max_pick_distance_mm(SherdManualOptions *options,
                                                           double distance_mm);
-
-/**
- * Creates refinement options with the library's defaults (criterion AUTO, both surfaces).
- *
- * # Safety
- * `out_options` must be writable.
- */
-SherdStatus sherd_refine_options_new(SherdRefineOptions **out_options);
-
-/**
- * Releases refinement options; NULL is ignored.
- *
- * # Safety
- * `options` must be NULL or a live handle, not freed before.
- */
-void sherd_refine_options_free(SherdRefineOptions *options);
-
-/**
- * The criterion: a `SHERD_CRITERION_*` value; others give `SHERD_STATUS_INVALID_ARGUMENT`.
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_refine_options_set_criterion(SherdRefineOptions *options, uint32_t criterion);
-
-/**
- * The surface: a `SHERD_SURFACE_*` value; others give `SHERD_STATUS_INVALID_ARGUMENT`.
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_refine_options_set_surface(SherdRefineOptions *options, uint32_t surface);
-
-/**
- * Number of horizontal sections (at most 10000); 0 lets the library choose from the
- * sherd's height.
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_refine_options_set_section_count(SherdRefineOptions *options,
-                                                   size_t section_count);
-
-/**
- * Largest tilt from the start axis the search considers, degrees (finite, positive, at
- * most 45; the paper's 10 by default).
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_refine_options_set_search_bound_deg(SherdRefineOptions *options,
-                                                      double bound_deg);
-
-/**
- * Which solution of the Pareto front becomes the axis: a `SHERD_PARETO_CHOICE_*` value;
- * `count` is the number of best solutions averaged by `SHERD_PARETO_CHOICE_MEAN_OF_BEST`
- * (at least 1) and is ignored by the others.
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_refine_options_set_pareto_choice(SherdRefineOptions *options,
-                                                   uint32_t choice,
-                                                   size_t count);
-
-/**
- * The Pareto criterion's limits per horizontal section (Eq. 3-4): sections with fewer
- * than `min_points` points (at least 3) or an arc under `min_sector_deg` degrees (finite,
- * 0 to 360) are left out. The defaults are 10 points and 3 degrees.
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_refine_options_set_pareto_section_limits(SherdRefineOptions *options,
-                                                           size_t min_points,
-                                                           double min_sector_deg);
-
-/**
- * The form of the profile criterion: a `SHERD_PROFILE_METHOD_*` value and its parameter
- * (the number of vertical sections of Eq. 5, the degree of Eq. 6's polynomial, or the
- * knot spacing of its spline in mm; see the values).
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_refine_options_set_profile_method(SherdRefineOptions *options,
-                                                    uint32_t method,
-                                                    double parameter);
-
-/**
- * The circle fit of the Pareto criterion's sections: a `SHERD_CIRCLE_FIT_*` value.
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_refine_options_set_circle_fit(SherdRefineOptions *options, uint32_t method);
-
-/**
- * The tangent plane's tolerance epsilon (Eq. 7), mm (finite, positive; 3 by default): a
- * vertical section whose extreme lies farther than this below the rim's highest point
- * (above the base's lowest) is taken for damaged and left out.
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_refine_options_set_tangent_tolerance_mm(SherdRefineOptions *options,
-                                                          double tolerance_mm);
-
-/**
- * The edge the tangent plane rests on: a `SHERD_EDGE_*` value (`SHERD_EDGE_DETECT`, the
- * default, takes the one whose extremes are level).
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_refine_options_set_edge(SherdRefineOptions *options, uint32_t edge);
-
-/**
- * Creates measurement options with the library's defaults (intervals from a bootstrap
- * of the default refinement).
- *
- * # Safety
- * `out_options` must be writable.
- */
-SherdStatus sherd_measure_options_new(SherdMeasureOptions **out_options);
-
-/**
- * Releases measurement options; NULL is ignored.
- *
- * # Safety
- * `options` must be NULL or a live handle, not freed before.
- */
-void sherd_measure_options_free(SherdMeasureOptions *options);
-
-/**
- * The refinement the intervals' bootstrap repeats: a copy of `refine_options` (pass the
- * options the axis was refined with).
- *
- * # Safety
- * `options` and `refine_options` must be live handles.
- */
-SherdStatus sherd_measure_options_set_refine_options(SherdMeasureOptions *options,
-                                                     const SherdRefineOptions *refine_options);
-
-/**
- * Number of bootstrap resamples behind the intervals (at most 10000); 0 gives no
- * intervals (NaN), and so do fewer than 5 usable resamples.
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_measure_options_set_bootstrap_samples(SherdMeasureOptions *options,
-                                                        size_t samples);
-
-/**
- * Seed of the bootstrap's resampling (the same seed gives the same intervals).
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_measure_options_set_bootstrap_seed(SherdMeasureOptions *options, uint64_t seed);
-
-/**
- * Confidence level of the intervals, in (0, 1) (default 0.95).
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_measure_options_set_confidence(SherdMeasureOptions *options, double confidence);
-
-/**
- * Creates drawing options with the library's defaults (light and occlusion, 1:1,
- * 300 dpi, black section, views beside the axis, interior view and prolongation on).
- *
- * # Safety
- * `out_options` must be writable.
- */
-SherdStatus sherd_draw_options_new(SherdDrawOptions **out_options);
-
-/**
- * Releases drawing options; NULL is ignored.
- *
- * # Safety
- * `options` must be NULL or a live handle, not freed before.
- */
-void sherd_draw_options_free(SherdDrawOptions *options);
-
-/**
- * The styles: a non-empty bitwise or of `SHERD_STYLE_*` values.
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_draw_options_set_style(SherdDrawOptions *options, uint32_t styles);
-
-/**
- * Publication scale 1:`denominator` (1 to 100; 1 is natural size).
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_draw_options_set_scale_denominator(SherdDrawOptions *options,
-                                                     uint32_t denominator);
-
-/**
- * Resolution of raster content and PNG output, dots per inch (10 to 4800).
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_draw_options_set_dpi(SherdDrawOptions *options, double dpi);
-
-/**
- * Angle of the section about the axis, radians from the fragment's centroid; NaN picks
- * the most informative profile (the default).
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_draw_options_set_section_angle_rad(SherdDrawOptions *options, double angle_rad);
-
-/**
- * Section fill: a `SHERD_SECTION_FILL_*` value.
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_draw_options_set_section_fill(SherdDrawOptions *options, uint32_t fill);
-
-/**
- * View placement: a `SHERD_PLACEMENT_*` value.
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_draw_options_set_placement(SherdDrawOptions *options, uint32_t placement);
-
-/**
- * The map of the regularity style: a `SHERD_REGULARITY_*` value.
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_draw_options_set_regularity(SherdDrawOptions *options, uint32_t regularity);
-
-/**
- * Whether the interior view is drawn left of the axis, and whether the outer profile is
- * prolonged (dashed) to the full diameter.
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_draw_options_set_views(SherdDrawOptions *options,
-                                         bool interior_view,
-                                         bool prolongation);
-
-/**
- * Whether the interior view is drawn between the section and the axis (default true);
- * the `interior_view` of `sherd draw --interior-view`, Python, Blender and MeshLab.
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_draw_options_set_interior_view(SherdDrawOptions *options, bool interior_view);
-
-/**
- * Whether the outer profile is prolonged, dashed, to the full diameter (default true).
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_draw_options_set_prolongation(SherdDrawOptions *options, bool prolongation);
-
-/**
- * The measurements written under the drawing: a bitwise or of `SHERD_ANNOTATION_*`
- * values, 0 for none (the default). Each is left out where it was not measured. Other
- * bits are refused and leave the options as they were.
- *
- * # Safety
- * `options` must be a live handle.
- */
-SherdStatus sherd_draw_options_set_annotations(SherdDrawOptions *options, uint32_t annotations);
-
-/**
- * A title (inventory number...) as a NUL-terminated UTF-8 string; NULL removes it.
- *
- * # Safety
- * `options` must be a live handle; `title` NULL or a NUL-terminated string.
- */
-SherdStatus sherd_draw_options_set_title(SherdDrawOptions *options, const char *title);
 
 /**
  * Reads, repairs, orients, refines and measures the scan at `path`, exactly as
@@ -1920,6 +1937,122 @@ SherdStatus sherd_refinement_pareto_front(const SherdRefinement *refinement,
 void sherd_refinement_free(SherdRefinement *refinement);
 
 /**
+ * Creates refinement options with the library's defaults (criterion AUTO, both surfaces).
+ *
+ * # Safety
+ * `out_options` must be writable.
+ */
+SherdStatus sherd_refine_options_new(SherdRefineOptions **out_options);
+
+/**
+ * Releases refinement options; NULL is ignored.
+ *
+ * # Safety
+ * `options` must be NULL or a live handle, not freed before.
+ */
+void sherd_refine_options_free(SherdRefineOptions *options);
+
+/**
+ * The criterion: a `SHERD_CRITERION_*` value; others give `SHERD_STATUS_INVALID_ARGUMENT`.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_criterion(SherdRefineOptions *options, uint32_t criterion);
+
+/**
+ * The surface: a `SHERD_SURFACE_*` value; others give `SHERD_STATUS_INVALID_ARGUMENT`.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_surface(SherdRefineOptions *options, uint32_t surface);
+
+/**
+ * Number of horizontal sections (at most 10000); 0 lets the library choose from the
+ * sherd's height.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_section_count(SherdRefineOptions *options,
+                                                   size_t section_count);
+
+/**
+ * Largest tilt from the start axis the search considers, degrees (finite, positive, at
+ * most 45; the paper's 10 by default).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_search_bound_deg(SherdRefineOptions *options,
+                                                      double bound_deg);
+
+/**
+ * Which solution of the Pareto front becomes the axis: a `SHERD_PARETO_CHOICE_*` value;
+ * `count` is the number of best solutions averaged by `SHERD_PARETO_CHOICE_MEAN_OF_BEST`
+ * (at least 1) and is ignored by the others.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_pareto_choice(SherdRefineOptions *options,
+                                                   uint32_t choice,
+                                                   size_t count);
+
+/**
+ * The Pareto criterion's limits per horizontal section (Eq. 3-4): sections with fewer
+ * than `min_points` points (at least 3) or an arc under `min_sector_deg` degrees (finite,
+ * 0 to 360) are left out. The defaults are 10 points and 3 degrees.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_pareto_section_limits(SherdRefineOptions *options,
+                                                           size_t min_points,
+                                                           double min_sector_deg);
+
+/**
+ * The form of the profile criterion: a `SHERD_PROFILE_METHOD_*` value and its parameter
+ * (the number of vertical sections of Eq. 5, the degree of Eq. 6's polynomial, or the
+ * knot spacing of its spline in mm; see the values).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_profile_method(SherdRefineOptions *options,
+                                                    uint32_t method,
+                                                    double parameter);
+
+/**
+ * The circle fit of the Pareto criterion's sections: a `SHERD_CIRCLE_FIT_*` value.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_circle_fit(SherdRefineOptions *options, uint32_t method);
+
+/**
+ * The tangent plane's tolerance epsilon (Eq. 7), mm (finite, positive; 3 by default): a
+ * vertical section whose extreme lies farther than this below the rim's highest point
+ * (above the base's lowest) is taken for damaged and left out.
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_tangent_tolerance_mm(SherdRefineOptions *options,
+                                                          double tolerance_mm);
+
+/**
+ * The edge the tangent plane rests on: a `SHERD_EDGE_*` value (`SHERD_EDGE_DETECT`, the
+ * default, takes the one whose extremes are level).
+ *
+ * # Safety
+ * `options` must be a live handle.
+ */
+SherdStatus sherd_refine_options_set_edge(SherdRefineOptions *options, uint32_t edge);
+
+/**
  * The name of a status constant as a static NUL-terminated string, e.g.
  * `"SHERD_STATUS_PARSE"`; `"SHERD_STATUS_UNKNOWN"` for a value that is not a status.
  * Never NULL; the string must not be freed.
@@ -1960,6 +2093,39 @@ const char *sherd_version(void);
  * macro of the header it was compiled against.
  */
 uint32_t sherd_abi_version(void);
+
+/**
+ * Writes the number of named values of `vocabulary` (a `SHERD_VOCABULARY_*` value) to
+ * `*out_count`; `SHERD_STATUS_INVALID_ARGUMENT` for another value.
+ *
+ * # Safety
+ * `out_count` must be writable.
+ */
+SherdStatus sherd_vocabulary_count(uint32_t vocabulary, size_t *out_count);
+
+/**
+ * Writes the named value number `index` (from 0 to the count less one, in the order the
+ * library lists them to users, which is not always the values' order) of `vocabulary` (a `SHERD_VOCABULARY_*` value) to `*out_entry` (`size` set):
+ * its name, its value and its description. `SHERD_STATUS_INVALID_ARGUMENT` for another
+ * vocabulary or an index past the count, with `*out_entry` left unchanged.
+ *
+ * # Safety
+ * `out_entry` must be writable with its `size` set.
+ */
+SherdStatus sherd_vocabulary_entry(uint32_t vocabulary,
+                                   size_t index,
+                                   SherdVocabularyEntry *out_entry);
+
+/**
+ * Writes the value of `vocabulary` (a `SHERD_VOCABULARY_*` value) named `name` (a
+ * NUL-terminated UTF-8 string; case and hyphens for underscores do not matter, and a
+ * few aliases such as `"color"` are accepted) to `*out_value`.
+ * `SHERD_STATUS_INVALID_ARGUMENT`, with a message listing the names, for an unknown name.
+ *
+ * # Safety
+ * `name` must be a NUL-terminated string; `out_value` writable.
+ */
+SherdStatus sherd_vocabulary_value(uint32_t vocabulary, const char *name, uint32_t *out_value);
 
 #ifdef __cplusplus
 }  // extern "C"

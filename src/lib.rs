@@ -19,8 +19,13 @@
 //! * [`pipeline`]: the layers chained for one scan (read, repair, orient, refine,
 //!   measure, draw), as the command-line tool, the C ABI and batch runs use them.
 //! * [`ffi`]: the stable C ABI; no algorithm lives there.
+//!
+//! Beside the layers, [`mod@vocabulary`] declares every named choice (criteria, styles,
+//! statuses...) once, for the layers, the command line, the C ABI and the bindings.
 
 pub mod error;
+#[macro_use]
+pub mod vocabulary;
 pub mod statistics;
 pub mod mesh;
 pub mod axis;

@@ -17,6 +17,7 @@ use crate::orient::{decimated_copy, orient_automatic_with_decimated, orient_from
 use crate::profile::measure::{measure_with_bootstrap_mesh, MeasureOptions, Measurements, AXIS_DOUBT_NOTE};
 use crate::profile::rills::{rill_check, three_points_on, trace_rills_under, Rill, RillCheck, RillOptions};
 use crate::refine::{chosen_criterion, refine, refine_placing_on, Criterion, RefineOptions, Refinement};
+use crate::vocabulary::Vocabulary;
 use crate::{Error, Result};
 
 /// What to do with a scan.
@@ -301,7 +302,7 @@ pub fn process_file(path: &Path, options: &PipelineOptions, drawing: Option<(&Dr
         match written {
             Ok(()) => record.drawing = Some(output.display().to_string()),
             Err(error) => {
-                record.status = STATUS_ERROR.into();
+                record.status = RecordStatus::Error;
                 record.error = Some(format!("drawing: {error}"));
             }
         }
@@ -309,20 +310,42 @@ pub fn process_file(path: &Path, options: &PipelineOptions, drawing: Option<(&Dr
     record
 }
 
-/// Status of a sherd oriented and measured.
-pub const STATUS_OK: &str = "ok";
-/// Status of a sherd whose data do not determine an axis.
-pub const STATUS_NEEDS_MANUAL: &str = "needs_manual_orientation";
-/// Status of a sherd whose axis line is found, refined and measured, but not which way is
-/// up (base to rim): not drawn.
-pub const STATUS_SENSE_UNCERTAIN: &str = "sense_uncertain";
-/// Status of a sherd oriented, refined, measured (and drawn in a batch) whose axis is not
-/// pinned down: the bootstrap's intervals of its direction or position are wide
-/// ([`Analysis::axis_doubts`], in `reason`). A best guess to check before its figures are
-/// used.
-pub const STATUS_AXIS_UNCERTAIN: &str = "axis_uncertain";
-/// Status of a sherd that could not be processed (the reason is in `error`).
-pub const STATUS_ERROR: &str = "error";
+crate::vocabulary! {
+    /// What became of one sherd: the `status` of its record (`sherd orient --json`, the
+    /// batch reports), written by its name.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+    pub enum RecordStatus: "record status", "record statuses" {
+        /// Oriented and measured.
+        #[default]
+        Ok = "ok" => "Oriented and measured",
+        /// Oriented, refined, measured (and drawn in a batch), but the axis is not pinned
+        /// down: the bootstrap's intervals of its direction or position are wide
+        /// ([`Analysis::axis_doubts`], in `reason`). A best guess to check before its
+        /// figures are used.
+        AxisUncertain = "axis_uncertain" => "Oriented and measured, but the axis is not pinned down: check it",
+        /// The axis line is found, refined and measured, but not which way is up (base to
+        /// rim): not drawn.
+        SenseUncertain = "sense_uncertain" => "The axis line is found but not which way is up",
+        /// The data do not determine an axis.
+        NeedsManualOrientation = "needs_manual_orientation" => "The data do not determine an axis: give three points",
+        /// The sherd could not be processed (the reason is in `error`).
+        Error = "error" => "The scan could not be processed",
+    }
+}
+
+/// Records write their status by name.
+impl Serialize for RecordStatus {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> std::result::Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}
+
+impl<'de> Deserialize<'de> for RecordStatus {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> std::result::Result<Self, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        name.parse().map_err(serde::de::Error::custom)
+    }
+}
 
 /// The axis the automatic orientation found for a sherd it declined (the best of its
 /// whole-sphere search), kept in the record of a `needs_manual_orientation` sherd: not an
@@ -346,8 +369,8 @@ pub struct BestGuess {
 pub struct SherdRecord {
     /// The scan file.
     pub file: String,
-    /// `ok`, `axis_uncertain`, `sense_uncertain`, `needs_manual_orientation` or `error`.
-    pub status: String,
+    /// What became of the sherd.
+    pub status: RecordStatus,
     /// Why the sherd needs manual orientation, why its sense is uncertain, or why its axis
     /// is (each doubt after a semicolon).
     pub reason: Option<String>,
@@ -419,7 +442,7 @@ pub struct SherdRecord {
 impl SherdRecord {
     /// The record of a scan that could not be processed.
     pub fn failed(file: String, error: &Error) -> Self {
-        SherdRecord { file, status: STATUS_ERROR.into(), error: Some(error.to_string()), ..Default::default() }
+        SherdRecord { file, status: RecordStatus::Error, error: Some(error.to_string()), ..Default::default() }
     }
 
     /// The record of an analysis, its axis brought back to the scan's own units.
@@ -429,17 +452,17 @@ impl SherdRecord {
             SherdRecord { file, timings: analysis.timings, scan: Some(analysis.scan.clone()), ..Default::default() };
         let mut method = orientation.report.method.clone();
         if let Some(refinement) = &analysis.refinement {
-            method = format!("{method} + {}", format!("{:?}", refinement.report.method).to_lowercase());
+            method = format!("{method} + {}", refinement.report.method);
         }
         record.method = Some(method);
         match &orientation.verdict {
-            Verdict::Oriented => record.status = STATUS_OK.into(),
+            Verdict::Oriented => record.status = RecordStatus::Ok,
             Verdict::SenseUncertain { reason } => {
-                record.status = STATUS_SENSE_UNCERTAIN.into();
+                record.status = RecordStatus::SenseUncertain;
                 record.reason = Some(reason.clone());
             }
             Verdict::NeedsManualOrientation { reason } => {
-                record.status = STATUS_NEEDS_MANUAL.into();
+                record.status = RecordStatus::NeedsManualOrientation;
                 record.reason = Some(reason.clone());
                 record.manual_points_on_rill = analysis.rills().first().map(|rill| {
                     three_points_on(rill).map(|p| (p.coords / analysis.millimetres_per_unit).into())
@@ -454,8 +477,8 @@ impl SherdRecord {
         }
         let doubts = analysis.axis_doubts();
         if !doubts.is_empty() {
-            if record.status == STATUS_OK {
-                record.status = STATUS_AXIS_UNCERTAIN.into();
+            if record.status == RecordStatus::Ok {
+                record.status = RecordStatus::AxisUncertain;
             }
             let doubts = doubts.join("; ");
             // Beside a sense left open, say that the line itself is in doubt too: "the
@@ -503,7 +526,7 @@ impl SherdRecord {
         let low = |v: Option<[f64; 2]>| number(v.map(|i| i[0]));
         let high = |v: Option<[f64; 2]>| number(v.map(|i| i[1]));
         let reason = self.error.clone().or_else(|| self.reason.clone()).unwrap_or_default();
-        let status = if self.error.is_some() { format!("error: {reason}") } else { self.status.clone() };
+        let status = if self.error.is_some() { format!("{}: {reason}", RecordStatus::Error) } else { self.status.to_string() };
         let t = &self.timings;
         let guess = self.best_guess.as_ref();
         let coordinate = |v: Option<f64>| v.map(|v| format!("{v:.6}")).unwrap_or_default();

@@ -7,7 +7,8 @@ use std::path::{Path, PathBuf};
 
 use assert_cmd::Command;
 
-use sherd::draw::{Annotations, DrawOptions, Drawing, Placement, SectionFill, Style};
+use sherd::draw::{AnnotationKind, Annotations, DrawOptions, Drawing, Placement, SectionFill, Style};
+use sherd::vocabulary::Vocabulary;
 use sherd::orient::{Axis, AxisRecord};
 
 fn sherd() -> Command {
@@ -104,7 +105,7 @@ fn the_command_line_default_style_is_the_librarys() {
         .and_then(|rest| rest.split(']').next())
         .unwrap_or_else(|| panic!("no default style in draw --help: {help}"));
     assert_eq!(Style::parse(default).unwrap(), DrawOptions::default().style, "draw --help's default {default:?}");
-    assert_eq!(default, Style::DEFAULT_NAMES);
+    assert_eq!(default, Style::DEFAULT.to_string());
     for name in ["--placement", "beside", "true-distance", "--section-fill", "hatched", "--interior-view", "--title", "--section-angle", "--annotations", "wall_thickness", "capacity"] {
         assert!(help.contains(name), "draw --help lacks {name}");
     }
@@ -120,7 +121,7 @@ fn annotation_lists_parse_by_name_all_and_none() {
     assert_eq!(Annotations::parse("all").unwrap(), Annotations::ALL);
     assert_eq!(Annotations::parse("none").unwrap(), Annotations::default());
     assert_eq!(Annotations::parse(" Capacity , wall-thickness").unwrap(), Annotations { height: false, wall_thickness: true, capacity: true });
-    assert_eq!(Annotations::parse(&Annotations::NAMES.join(",")).unwrap(), Annotations::ALL);
+    assert_eq!(Annotations::parse(&AnnotationKind::names().join(",")).unwrap(), Annotations::ALL);
     for (bad, says) in [("height,volume", "\"volume\""), ("", "no annotation"), (" , ", "no annotation"), ("all,height", "\"all\""), ("height,none", "\"none\"")] {
         let message = Annotations::parse(bad).unwrap_err().to_string();
         assert!(message.contains(says) && message.contains("wall_thickness"), "{bad:?}: {message}");

@@ -7,7 +7,8 @@ use std::process::Command;
 
 mod support;
 
-use sherd::draw::{DrawOptions, Drawing, Element, Format, Segment, Style};
+use sherd::draw::{DrawOptions, Drawing, Element, Format, Segment, Style, StyleKind};
+use sherd::vocabulary::Vocabulary;
 use sherd::mesh::Mesh;
 use sherd::orient::Axis;
 use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart, SynthSherd};
@@ -354,8 +355,8 @@ fn regularity_legend_is_the_export_scale() {
 /// reader: usvg, the PNG decoder, ghostscript for PDF and EPS (skipped with a message
 /// when gs is absent, unless SHERD_REQUIRE_TOOLS=1).
 fn every_style_in_every_format(name: &str, mesh: &Mesh, axis: &Axis, measurements: Option<sherd::profile::measure::Measurements>) {
-    let mut styles: Vec<&str> = Style::NAMES.to_vec();
-    let all = Style::NAMES.join(",");
+    let mut styles: Vec<&str> = StyleKind::names();
+    let all = StyleKind::names().join(",");
     styles.push(&all);
     for style in styles {
         let options = DrawOptions { style: Style::parse(style).unwrap(), dpi: 100.0, measurements: measurements.clone(), ..Default::default() };

@@ -368,7 +368,7 @@ fn synthetic_skins_match_the_generator() {
 /// confidently wrong. The base (piece 3) keeps its axis within 3 degrees.
 #[test]
 fn the_sfspp_sherds_are_oriented_near_their_reference_or_flagged() {
-    use sherd::pipeline::{analyse, PipelineOptions, SherdRecord, STATUS_OK};
+    use sherd::pipeline::{analyse, PipelineOptions, RecordStatus, SherdRecord};
     let folder = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/sfspp_pot_C");
     if !folder.exists() {
         println!("SKIP: {} is absent", folder.display());
@@ -381,7 +381,7 @@ fn the_sfspp_sherds_are_oriented_near_their_reference_or_flagged() {
         let record = SherdRecord::from_analysis(format!("piece {piece}"), &analysis);
         let angle = analysis.axis().line_angle_to_deg(&reference);
         println!("piece {piece}: {angle:.2} deg from the reference, {} {:?}", record.status, record.reason);
-        if record.status == STATUS_OK {
+        if record.status == RecordStatus::Ok {
             assert!(angle < 5.0, "piece {piece} called ok {angle:.1} deg from its reference");
         }
         if piece == 3 {
@@ -397,7 +397,7 @@ fn the_sfspp_sherds_are_oriented_near_their_reference_or_flagged() {
 /// doubted. Most fragments still get an axis line.
 #[test]
 fn no_ok_axis_is_grossly_wrong_on_the_refinement_corpus() {
-    use sherd::pipeline::{analyse, PipelineOptions, SherdRecord, STATUS_OK};
+    use sherd::pipeline::{analyse, PipelineOptions, RecordStatus, SherdRecord};
     use sherd::synth::{generate_vessel, VesselOptions};
     let options = VesselOptions { fragment_count: 34, random_motion: true, ..Default::default() };
     let pipeline = PipelineOptions { refine: Some(Default::default()), ..Default::default() };
@@ -409,7 +409,7 @@ fn no_ok_axis_is_grossly_wrong_on_the_refinement_corpus() {
             let Ok(analysis) = analyse(sherd.mesh.clone(), &pipeline) else { continue };
             let record = SherdRecord::from_analysis(format!("vessel {seed} fragment {k}"), &analysis);
             usable += analysis.orientation.verdict.has_axis_line() as usize;
-            if record.status == STATUS_OK {
+            if record.status == RecordStatus::Ok {
                 ok += 1;
                 let angle = analysis.axis().line_angle_to_deg(&sherd.truth.axis);
                 if angle > 15.0 || analysis.axis().direction.dot(&sherd.truth.axis.direction) < 0.0 {

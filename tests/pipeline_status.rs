@@ -4,7 +4,7 @@
 //! doubted axis as a confident one.
 
 use sherd::orient::{mean_point_distance_mm, Verdict};
-use sherd::pipeline::{analyse, PipelineOptions, SherdRecord, STATUS_AXIS_UNCERTAIN, STATUS_OK};
+use sherd::pipeline::{analyse, PipelineOptions, RecordStatus, SherdRecord};
 use sherd::refine::RefineOptions;
 use sherd::synth::{generate_vessel, VesselOptions};
 
@@ -21,20 +21,20 @@ fn an_axis_the_bootstrap_doubts_is_not_called_ok() {
         let off_mm = mean_point_distance_mm(&fragment.mesh.positions, analysis.axis(), &fragment.truth.axis);
         let context = format!("fragment {index}: {} {:?}, {off_mm:.2} mm off, doubts {doubts:?}", record.status, record.reason);
         if analysis.orientation.verdict == Verdict::Oriented {
-            assert_eq!(record.status, if doubts.is_empty() { STATUS_OK } else { STATUS_AXIS_UNCERTAIN }, "{context}");
+            assert_eq!(record.status, if doubts.is_empty() { RecordStatus::Ok } else { RecordStatus::AxisUncertain }, "{context}");
         }
         for doubt in doubts {
             assert!(record.reason.as_deref().is_some_and(|r| r.contains(doubt.as_str())), "the reason gives each doubt: {context}");
         }
-        if record.status == STATUS_AXIS_UNCERTAIN {
+        if record.status == RecordStatus::AxisUncertain {
             uncertain += 1;
             // An uncertain axis is still given (and drawn in a batch): the best guess.
             assert!(record.axis.is_some() && analysis.is_oriented(), "{context}");
         }
-        if record.status == STATUS_OK {
+        if record.status == RecordStatus::Ok {
             ok_offsets_mm.push(off_mm);
         }
-        if (record.status == STATUS_OK || record.status == STATUS_AXIS_UNCERTAIN) && off_mm < 4.0 {
+        if (record.status == RecordStatus::Ok || record.status == RecordStatus::AxisUncertain) && off_mm < 4.0 {
             right_given += 1;
         }
         if index == 3 {
@@ -44,7 +44,7 @@ fn an_axis_the_bootstrap_doubts_is_not_called_ok() {
             // (the circles criterion's placement fails), and the record says so.
             let angle = analysis.axis().line_angle_to_deg(&fragment.truth.axis);
             assert!(angle < 0.5, "{angle:.2} deg: {context}");
-            assert_eq!(record.status, STATUS_AXIS_UNCERTAIN, "{context}");
+            assert_eq!(record.status, RecordStatus::AxisUncertain, "{context}");
             assert!(record.reason.as_deref().is_some_and(|r| r.contains("95% position interval")), "{context}");
         }
         if index == 7 {
@@ -54,7 +54,7 @@ fn an_axis_the_bootstrap_doubts_is_not_called_ok() {
             // Now the whole-sphere search finds another axis about as good, and its sense is
             // not known either: never called ok.
             assert!(off_mm > 4.0, "{context}");
-            assert_ne!(record.status, STATUS_OK, "{context}");
+            assert_ne!(record.status, RecordStatus::Ok, "{context}");
         }
     }
     assert!(uncertain >= 3, "{uncertain} axes uncertain");

@@ -119,7 +119,7 @@ fn a_sense_uncertain_sherd_is_refined_and_measured_but_not_drawn() {
     let line_error = analysis.axis().line_angle_to_deg(&sherd.truth.axis);
     assert!(line_error < 5.0, "the axis line is {line_error} deg off");
     let record = sherd::pipeline::SherdRecord::from_analysis("s30".into(), &analysis);
-    assert_eq!(record.status, sherd::pipeline::STATUS_SENSE_UNCERTAIN);
+    assert_eq!(record.status, sherd::pipeline::RecordStatus::SenseUncertain);
     assert!(record.reason.as_deref().is_some_and(|r| r.contains("which way is up")), "{:?}", record.reason);
     assert!(record.axis.is_some() && record.sector_angle_deg.is_some(), "{record:?}");
 }

@@ -2,7 +2,6 @@
 
 #include <array>
 #include <cmath>
-#include <initializer_list>
 #include <limits>
 #include <optional>
 
@@ -32,16 +31,37 @@ const QStringList axisSources = {
 	"Automatic (as Sherd: orient)",
 	"Z axis of the layer (already oriented by Sherd: orient)"};
 const QStringList applyToChoices = {"Layer transform", "Vertices"};
-const QStringList criteria = {"Circles", "Pareto", "Profile", "Tangent", "Auto"};
-const QStringList surfaces = {"Inner", "Outer", "Both"};
-const QStringList paretoChoices = {"Knee", "Best centres", "Best residuals", "Mean of the best"};
-const QStringList edges = {"Detect", "Rim", "Base"};
-// In the order of the SHERD_CIRCLE_FIT_* and SHERD_PROFILE_METHOD_* values.
-const QStringList circleFits = {"Kasa", "Pratt", "Taubin", "Geometric"};
-const QStringList profileMethods = {"Reference profile (Eq. 5)", "Polynomial (Eq. 6)", "Spline (Eq. 6)"};
-const QStringList formats = {"SVG", "EPS", "PDF", "PNG"};
-const QStringList formatExtensions = {"svg", "eps", "pdf", "png"};
-const QStringList regularityMaps = {"Distance to the axis", "Distance to the ideal vessel"};
+// How MeshLab shows one of the library's names: "mean_of_best" as "Mean of best".
+QString label(const std::string& name)
+{
+	QString text = QString::fromStdString(name).replace('_', ' ');
+	return text.left(1).toUpper() + text.mid(1);
+}
+
+// The library's names of a vocabulary (SHERD_VOCABULARY_*), each at the index of its
+// value: a MeshLab enum parameter's index is the C value.
+QStringList names(std::uint32_t vocabulary)
+{
+	QStringList listed;
+	for (const std::string& name : sherd::names_by_value(vocabulary)) listed << QString::fromStdString(name);
+	return listed;
+}
+
+// The labels of a vocabulary's enum parameter, index i for value i.
+QStringList labels(std::uint32_t vocabulary)
+{
+	QStringList listed;
+	for (const std::string& name : sherd::names_by_value(vocabulary)) listed << label(name);
+	return listed;
+}
+
+// The drawing formats' labels: their names (the file extensions) in capitals.
+QStringList formatLabels()
+{
+	QStringList listed;
+	for (const QString& name : names(SHERD_VOCABULARY_FORMAT)) listed << name.toUpper();
+	return listed;
+}
 
 QString axisSourceHelp()
 {
@@ -204,7 +224,7 @@ SherdAxis layerAxis(const LayerMesh& layer, int source)
 		qWarning("Sherd: the sense of the axis (base to rim) is uncertain: %s", analysis.reason.c_str());
 	// Found but not pinned down: the axis is used (the best guess), and said to be one.
 	QJsonObject record = QJsonDocument::fromJson(QByteArray::fromStdString(analysis.record_json)).object();
-	if (record.value("status").toString() == "axis_uncertain")
+	if (record.value("status").toString() == names(SHERD_VOCABULARY_RECORD_STATUS).value(SHERD_RECORD_STATUS_AXIS_UNCERTAIN))
 		qWarning("Sherd: the axis is not pinned down (%s): check it before using the figures.",
 		         qUtf8Printable(record.value("reason").toString()));
 	return analysis.axis;
@@ -382,7 +402,8 @@ std::map<std::string, QVariant> refine(MeshModel& model, const RichParameterList
 	Matrix44m oriented = toMatrix(layer.mesh.oriented_transform(axis));
 	applyOrientation(model, oriented, applyTo, postConditionMask);
 	logger.log("Sherd: refine (%s on %s, %zu sections): tilt %.3f deg, shift %.3f mm, residual %.4f -> %.4f mm",
-	           qUtf8Printable(criteria.value(int(report.criterion))), qUtf8Printable(surfaces.value(int(report.surface))),
+	           qUtf8Printable(names(SHERD_VOCABULARY_CRITERION).value(int(report.criterion))),
+	           qUtf8Printable(names(SHERD_VOCABULARY_SURFACE).value(int(report.surface))),
 	           report.section_count, report.tilt_deg, report.shift_mm, report.start_residual_mm, report.residual_mm);
 	logger.log("Sherd: refined axis %s", qUtf8Printable(axisText(axis)));
 	if (report.flagged)
@@ -440,36 +461,51 @@ std::map<std::string, QVariant> measure(MeshModel& model, const RichParameterLis
 }
 
 /// The or of the C ABI bits whose check boxes are ticked.
-std::uint32_t tickedBits(const RichParameterList& parameters,
-                         std::initializer_list<std::pair<const char*, std::uint32_t>> boxes)
+// The check box of one bit of a bit vocabulary (styles, annotations): `prefix` and the
+// library's name, "style_linear".
+QString boxName(const char* prefix, const std::string& name)
+{
+	return QString(prefix) + QString::fromStdString(name);
+}
+
+// The or of the bits of `vocabulary` whose check boxes (`prefix` + name) are ticked.
+std::uint32_t tickedBits(const RichParameterList& parameters, std::uint32_t vocabulary, const char* prefix)
 {
 	std::uint32_t bits = 0;
-	for (const auto& [name, bit] : boxes)
-		if (parameters.getBool(name)) bits |= bit;
+	for (const sherd::VocabularyEntry& entry : sherd::vocabulary(vocabulary))
+		if (parameters.getBool(boxName(prefix, entry.name))) bits |= entry.value;
 	return bits;
+}
+
+// A check box per bit of `vocabulary`, named `prefix` + the library's name, with the
+// library's description; those in `ticked` are ticked by default.
+void addBoxes(RichParameterList& list, std::uint32_t vocabulary, const char* prefix, const QString& labelPrefix,
+              std::uint32_t ticked)
+{
+	for (const sherd::VocabularyEntry& entry : sherd::vocabulary(vocabulary))
+		list.addParam(RichBool(boxName(prefix, entry.name), (ticked & entry.value) != 0,
+		                       labelPrefix + (labelPrefix.isEmpty() ? label(entry.name) : label(entry.name).toLower()),
+		                       QString::fromStdString(entry.description) + "."));
 }
 
 std::map<std::string, QVariant> draw(MeshModel& model, const RichParameterList& parameters,
                                      const FilterPlugin& logger)
 {
 	int format = parameters.getEnum("format");
+	const QStringList formatExtensions = names(SHERD_VOCABULARY_FORMAT);
+	const QStringList formats = formatLabels();
 	if (format < 0 || format >= formats.size())
-		throw MLException(QString("Sherd: format %1 is not one of 0 (SVG) to 3 (PNG).").arg(format));
+		throw MLException(QString("Sherd: format %1 is not one of 0 (%2) to %3 (%4).")
+		                      .arg(format).arg(formats.first()).arg(formats.size() - 1).arg(formats.last()));
 	QString path = parameters.getSaveFileName("file");
 	if (path.isEmpty()) throw MLException("Sherd: no file to write the drawing to.");
 	QString extension = QFileInfo(path).suffix().toLower();
 	if (extension.isEmpty()) path += "." + formatExtensions[format];
 	else if (extension != formatExtensions[format])
 		throw MLException(QString("Sherd: the file %1 ends in .%2 but the format is %3.").arg(path, extension, formats[format]));
-	std::uint32_t styles = tickedBits(parameters, {
-		{"style_linear", SHERD_STYLE_LINEAR}, {"style_colour", SHERD_STYLE_COLOUR},
-		{"style_light", SHERD_STYLE_LIGHT},   {"style_occlusion", SHERD_STYLE_OCCLUSION},
-		{"style_stipple", SHERD_STYLE_STIPPLE}, {"style_regularity", SHERD_STYLE_REGULARITY}});
+	std::uint32_t styles = tickedBits(parameters, SHERD_VOCABULARY_STYLE, "style_");
 	// The annotations' check boxes: annotations_<name>, the names of `sherd draw --annotations`.
-	std::uint32_t annotations = tickedBits(parameters, {
-		{"annotations_height", SHERD_ANNOTATION_HEIGHT},
-		{"annotations_wall_thickness", SHERD_ANNOTATION_WALL_THICKNESS},
-		{"annotations_capacity", SHERD_ANNOTATION_CAPACITY}});
+	std::uint32_t annotations = tickedBits(parameters, SHERD_VOCABULARY_ANNOTATION, "annotations_");
 	int scale = parameters.getInt("scale_denominator");
 	if (scale < 1) throw MLException(QString("Sherd: scale 1:%1 is not a scale (1 to 100).").arg(scale));
 
@@ -552,7 +588,7 @@ std::map<std::string, QVariant> regularity(MeshModel& model, const RichParameter
 	}
 	postConditionMask = MeshModel::MM_VERTQUALITY | MeshModel::MM_VERTCOLOR;
 	logger.log("Sherd: regularity of '%s' (%s) as vertex quality and colour: %.3f to %.3f mm (colour scale %.3f to %.3f mm)",
-	           qUtf8Printable(model.label()), qUtf8Printable(regularityMaps.value(map)), low, high,
+	           qUtf8Printable(model.label()), qUtf8Printable(names(SHERD_VOCABULARY_REGULARITY).value(map)), low, high,
 	           painted.value_range[0], painted.value_range[1]);
 	return {{"min_mm", double(low)}, {"max_mm", double(high)}};
 }
@@ -706,26 +742,26 @@ RichParameterList FilterSherdPlugin::initParameterList(const QAction* action, co
 	}
 	case FP_SHERD_REFINE:
 		addAxisParameter(list, "start_axis", "Start axis");
-		list.addParam(RichEnum("criterion", SHERD_CRITERION_AUTO, criteria, "Criterion",
+		list.addParam(RichEnum("criterion", SHERD_CRITERION_AUTO, labels(SHERD_VOCABULARY_CRITERION), "Criterion",
 		                       "Circles: radius variance of horizontal sections (Eq. 2). Pareto: circle centres "
 		                       "and residuals (Eq. 3-4). Profile: superposition of vertical profiles (Eq. 5-6). "
 		                       "Tangent: the plane of a level rim or base (Eq. 7). Auto: tangent when the "
 		                       "fragment keeps a level rim or base, otherwise circles averaged with the profile "
 		                       "where the two agree."));
-		list.addParam(RichEnum("surface", SHERD_SURFACE_BOTH, surfaces, "Surface",
+		list.addParam(RichEnum("surface", SHERD_SURFACE_BOTH, labels(SHERD_VOCABULARY_SURFACE), "Surface",
 		                       "The skin of the vessel the criterion looks at."));
 		list.addParam(RichInt("section_count", 0, "Sections",
 		                      "Number of horizontal sections; 0 lets sherd choose from the fragment's height."));
 		list.addParam(RichFloat("search_bound_deg", 10, "Search bound (deg)",
 		                        "Largest tilt from the start axis the search considers, degrees (above 0, at "
 		                        "most 45)."));
-		list.addParam(RichEnum("pareto_choice", SHERD_PARETO_CHOICE_KNEE, paretoChoices, "Pareto solution",
+		list.addParam(RichEnum("pareto_choice", SHERD_PARETO_CHOICE_KNEE, labels(SHERD_VOCABULARY_PARETO_CHOICE), "Pareto solution",
 		                       "With the Pareto criterion, the solution of the front that becomes the axis: the "
 		                       "knee (smallest product of the two costs), the best centre dispersion (Eq. 3), the "
 		                       "best circle residual (Eq. 4), or the mean of the best few (below)."));
 		list.addParam(RichInt("pareto_mean_count", 2, "Best averaged",
 		                      "How many of the best solutions the mean takes (the original tool takes 2)."));
-		list.addParam(RichEnum("edge", SHERD_EDGE_DETECT, edges, "Tangent plane's edge",
+		list.addParam(RichEnum("edge", SHERD_EDGE_DETECT, labels(SHERD_VOCABULARY_EDGE), "Tangent plane's edge",
 		                       "With the tangent or auto criterion: the rim, the base, or the one whose extremes "
 		                       "are level."));
 		list.addParam(RichSaveFile("pareto_plot", QString(), "*.svg", "Pareto plot",
@@ -741,11 +777,11 @@ RichParameterList FilterSherdPlugin::initParameterList(const QAction* action, co
 		list.addParam(RichFloat("pareto_min_arc_deg", 3, "Pareto: smallest arc (deg)",
 		                        "With the Pareto criterion: a horizontal section spanning a smaller arc about the "
 		                        "axis is left out (0 to 360)."));
-		list.addParam(RichEnum("circle_fit", SHERD_CIRCLE_FIT_TAUBIN, circleFits, "Pareto: circle fit",
+		list.addParam(RichEnum("circle_fit", SHERD_CIRCLE_FIT_TAUBIN, labels(SHERD_VOCABULARY_CIRCLE_FIT), "Pareto: circle fit",
 		                       "With the Pareto criterion: how each section's circle is fitted (Chernov): Taubin "
 		                       "is nearly unbiased on short arcs, Kasa pulls them towards small circles, "
 		                       "Geometric refines Taubin's circle by least squares."));
-		list.addParam(RichEnum("profile_method", SHERD_PROFILE_METHOD_SPLINE, profileMethods, "Profile: form",
+		list.addParam(RichEnum("profile_method", SHERD_PROFILE_METHOD_SPLINE, labels(SHERD_VOCABULARY_PROFILE_METHOD), "Profile: form",
 		                       "With the profile criterion: the distance to the longest vertical section (Eq. 5), "
 		                       "or the residuals of a profile r(z) fitted per skin (Eq. 6), a polynomial or a "
 		                       "cubic spline (the default: it follows a lip a polynomial cannot)."));
@@ -773,27 +809,19 @@ RichParameterList FilterSherdPlugin::initParameterList(const QAction* action, co
 		addAxisParameter(list);
 		list.addParam(RichSaveFile("file", file, "*.svg", "File",
 		                           "Where to write the drawing; its extension must match the format."));
-		list.addParam(RichEnum("format", 0, formats, "Format",
+		list.addParam(RichEnum("format", SHERD_FORMAT_SVG, formatLabels(), "Format",
 		                       "SVG (layers editable in Inkscape or Illustrator), EPS, PDF or PNG."));
-		list.addParam(RichBool("style_linear", false, "Linear", "Outlines and crease lines."));
-		list.addParam(RichBool("style_colour", false, "Colour", "The scan's vertex colours."));
-		list.addParam(RichBool("style_light", true, "Light", "Directional light from the upper left."));
-		list.addParam(RichBool("style_occlusion", true, "Occlusion", "Ambient occlusion."));
-		list.addParam(RichBool("style_stipple", false, "Stipple", "Dots, denser in darker areas."));
-		list.addParam(RichBool("style_regularity", false, "Regularity", "Vessel regularity as a colour map."));
+		// The library's default styles (sherd draw's), ticked.
+		addBoxes(list, SHERD_VOCABULARY_STYLE, "style_", QString(), SHERD_STYLE_LIGHT | SHERD_STYLE_OCCLUSION);
 		list.addParam(RichInt("scale_denominator", 1, "Scale 1:", "Publication scale 1:N (1 to 100; 1 is natural size)."));
 		list.addParam(RichFloat("dpi", 300, "DPI", "Resolution of raster content and PNG output (10 to 4800)."));
-		list.addParam(RichEnum("placement", 0, QStringList{"Beside the axis", "True distance"}, "Placement",
-		                       "The views beside the axis (beside), or the fragment at its true distance from it (true_distance)."));
-		list.addParam(RichEnum("section_fill", 0, QStringList{"Black", "Hatched"}, "Section fill",
+		list.addParam(RichEnum("placement", SHERD_PLACEMENT_BESIDE, labels(SHERD_VOCABULARY_PLACEMENT), "Placement",
+		                       "The views beside the axis, or the fragment at its true distance from it."));
+		list.addParam(RichEnum("section_fill", SHERD_SECTION_FILL_BLACK, labels(SHERD_VOCABULARY_SECTION_FILL), "Section fill",
 		                       "The section filled black (the usual convention) or hatched at 45 degrees."));
 		list.addParam(RichBool("interior_view", true, "Interior view", "Draw the interior view between the section and the axis."));
 		list.addParam(RichBool("prolongation", true, "Prolongation", "Prolong the outer profile, dashed, to the full diameter."));
-		list.addParam(RichBool("annotations_height", false, "Annotate the height", "Write the preserved height under the drawing."));
-		list.addParam(RichBool("annotations_wall_thickness", false, "Annotate the wall thickness",
-		                       "Write the median wall thickness under the drawing."));
-		list.addParam(RichBool("annotations_capacity", false, "Annotate the capacity",
-		                       "Write the capacity under the drawing (where the profile runs from base to rim)."));
+		addBoxes(list, SHERD_VOCABULARY_ANNOTATION, "annotations_", "Annotate the ", 0);
 		list.addParam(RichString("title", QString(), "Title", "A title (inventory number...) printed on the drawing."));
 		addSectionParameters(list);
 		break;
@@ -805,7 +833,7 @@ RichParameterList FilterSherdPlugin::initParameterList(const QAction* action, co
 		break;
 	case FP_SHERD_REGULARITY:
 		addAxisParameter(list);
-		list.addParam(RichEnum("map", 1, regularityMaps, "Map",
+		list.addParam(RichEnum("map", SHERD_REGULARITY_IDEAL_VESSEL, labels(SHERD_VOCABULARY_REGULARITY), "Map",
 		                       "Distance to the axis (mm), or signed distance to the ideal vessel revolved from "
 		                       "the section (mm, positive outside)."));
 		addSectionParameters(list);

@@ -54,6 +54,43 @@ inline void check_abi() {
     }
 }
 
+/// One named value of a vocabulary (a SHERD_VOCABULARY_* value): the library's name
+/// ("circles"), the constant's value (SHERD_CRITERION_CIRCLES) and what it does.
+struct VocabularyEntry {
+    std::string name;
+    std::uint32_t value;
+    std::string description;
+};
+
+/// Every named value of `vocabulary`, in the order the library lists them to users, so
+/// that a host offers the library's names rather than a copy of them.
+inline std::vector<VocabularyEntry> vocabulary(std::uint32_t vocabulary) {
+    std::size_t count = 0;
+    check(sherd_vocabulary_count(vocabulary, &count));
+    std::vector<VocabularyEntry> entries;
+    for (std::size_t index = 0; index < count; ++index) {
+        SherdVocabularyEntry entry{};
+        entry.size = sizeof entry;
+        check(sherd_vocabulary_entry(vocabulary, index, &entry));
+        entries.push_back({entry.name, entry.value, entry.description});
+    }
+    return entries;
+}
+
+/// The names of `vocabulary` at the index of their values, for a menu whose index is the
+/// value (the values of such a vocabulary run from 0 without a gap).
+inline std::vector<std::string> names_by_value(std::uint32_t vocabulary) {
+    std::vector<VocabularyEntry> entries = sherd::vocabulary(vocabulary);
+    std::vector<std::string> names(entries.size());
+    for (const VocabularyEntry& entry : entries) {
+        if (entry.value >= names.size() || !names[entry.value].empty())
+            throw Error(SHERD_STATUS_INVALID_ARGUMENT,
+                        "vocabulary " + std::to_string(vocabulary) + " is not numbered from 0 without a gap");
+        names[entry.value] = entry.name;
+    }
+    return names;
+}
+
 /// Takes the bytes of a library buffer and frees it.
 inline std::string take_buffer(SherdBuffer* buffer) {
     struct Release {

@@ -28,35 +28,51 @@ use crate::mesh::occlusion::OcclusionOptions;
 use crate::mesh::Mesh;
 use crate::orient::Axis;
 use crate::profile::measure::Measurements;
+use crate::vocabulary::{or_list, Vocabulary};
 use crate::{Error, Result};
 
-/// Output formats.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Format {
-    /// SVG with one layer per part of the drawing.
-    Svg,
-    /// Encapsulated PostScript, level 3.
-    Eps,
-    /// PDF 1.4.
-    Pdf,
-    /// PNG at the drawing's resolution.
-    Png,
+crate::vocabulary! {
+    /// Output formats, named by their file extensions.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    pub enum Format: "format", "formats" {
+        /// SVG with one layer per part of the drawing.
+        Svg = "svg" => "SVG, one layer per part of the drawing",
+        /// Encapsulated PostScript, level 3.
+        Eps = "eps" | "ps" => "Encapsulated PostScript, level 3",
+        /// PDF 1.4.
+        Pdf = "pdf" => "PDF 1.4",
+        /// PNG at the drawing's resolution.
+        Png = "png" => "PNG at the drawing's resolution",
+    }
 }
 
 impl Format {
     /// The format a file name's extension asks for.
     pub fn from_path(path: &Path) -> Result<Format> {
         let extension = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
-        match extension.as_deref() {
-            Some("svg") => Ok(Format::Svg),
-            Some("eps") | Some("ps") => Ok(Format::Eps),
-            Some("pdf") => Ok(Format::Pdf),
-            Some("png") => Ok(Format::Png),
-            _ => Err(Error::InvalidArgument(format!(
-                "{}: unknown drawing format; use .svg, .eps, .pdf or .png",
-                path.display()
-            ))),
-        }
+        extension.as_deref().and_then(Format::find).ok_or_else(|| {
+            let extensions: Vec<String> = Format::ALL.iter().map(|format| format!(".{format}")).collect();
+            Error::InvalidArgument(format!("{}: unknown drawing format; use {}", path.display(), or_list(&extensions)))
+        })
+    }
+}
+
+crate::vocabulary! {
+    /// One rendering style: a member of a [`Style`].
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    pub enum StyleKind: "style", "styles" {
+        /// [`Style::linear`].
+        Linear = "linear" => "Outline and profile lines only",
+        /// [`Style::colour`].
+        Colour = "colour" | "color" => "The scan's colours",
+        /// [`Style::light`].
+        Light = "light" => "Shading by a light from the upper left",
+        /// [`Style::occlusion`].
+        Occlusion = "occlusion" => "Ambient occlusion shading",
+        /// [`Style::stipple`].
+        Stipple = "stipple" => "Stippled shading",
+        /// [`Style::regularity`].
+        Regularity = "regularity" => "Deviation from a regular vessel as colour",
     }
 }
 
@@ -78,68 +94,98 @@ pub struct Style {
 }
 
 impl Style {
-    /// The style names, as `sherd draw --style` takes them.
-    pub const NAMES: [&'static str; 6] = ["linear", "colour", "light", "occlusion", "stipple", "regularity"];
-
     /// The default styles everywhere (`DrawOptions::default()`, `sherd draw`, the C ABI,
     /// Python, Blender and MeshLab): directional light and ambient occlusion.
-    pub const DEFAULT_NAMES: &'static str = "light,occlusion";
-
-    /// The default styles, [`Style::DEFAULT_NAMES`].
     pub const DEFAULT: Style =
         Style { linear: false, colour: false, light: true, occlusion: true, stipple: false, regularity: false };
 
+    /// The flag of one style.
+    pub fn flag_mut(&mut self, kind: StyleKind) -> &mut bool {
+        match kind {
+            StyleKind::Linear => &mut self.linear,
+            StyleKind::Colour => &mut self.colour,
+            StyleKind::Light => &mut self.light,
+            StyleKind::Occlusion => &mut self.occlusion,
+            StyleKind::Stipple => &mut self.stipple,
+            StyleKind::Regularity => &mut self.regularity,
+        }
+    }
+
+    /// Whether the style includes `kind`.
+    pub fn has(mut self, kind: StyleKind) -> bool {
+        *self.flag_mut(kind)
+    }
+
+    /// The style made of `kinds`.
+    pub fn of(kinds: impl IntoIterator<Item = StyleKind>) -> Style {
+        let mut style = Style::default();
+        kinds.into_iter().for_each(|kind| *style.flag_mut(kind) = true);
+        style
+    }
+
     /// Parses a comma-separated list of names ("color" is accepted for "colour").
     pub fn parse(list: &str) -> Result<Style> {
-        let mut style = Style::default();
-        for name in list.split(',').map(str::trim).filter(|n| !n.is_empty()) {
-            match name.to_ascii_lowercase().as_str() {
-                "linear" => style.linear = true,
-                "colour" | "color" => style.colour = true,
-                "light" => style.light = true,
-                "occlusion" => style.occlusion = true,
-                "stipple" => style.stipple = true,
-                "regularity" => style.regularity = true,
-                _ => {
-                    return Err(Error::InvalidArgument(format!(
-                        "unknown style {name:?}; the styles are {}",
-                        Style::NAMES.join(", ")
-                    )))
-                }
-            }
+        let kinds: Vec<StyleKind> =
+            list.split(',').map(str::trim).filter(|n| !n.is_empty()).map(StyleKind::parse_name).collect::<Result<_>>()?;
+        if kinds.is_empty() {
+            return Err(Error::InvalidArgument(format!("no style given; choose among {}", StyleKind::names().join(", "))));
         }
-        if style == Style::default() {
-            return Err(Error::InvalidArgument(format!("no style given; choose among {}", Style::NAMES.join(", "))));
-        }
-        Ok(style)
+        Ok(Style::of(kinds))
     }
 }
 
-/// How the section is filled.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-pub enum SectionFill {
-    /// Solid black (the usual convention for pottery).
-    Black,
-    /// 45-degree hatching.
-    Hatched,
+/// The style's names, comma-separated, as [`Style::parse`] reads them ("light,occlusion").
+impl std::fmt::Display for Style {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let names: Vec<&str> = StyleKind::ALL.iter().filter(|kind| self.has(**kind)).map(|kind| kind.name()).collect();
+        f.write_str(&names.join(","))
+    }
 }
 
-/// Where the views stand relative to the axis (section 2.4.1).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-pub enum Placement {
-    /// Front view beside the axis, regardless of the true position (Fig. 4:a).
-    Beside,
-    /// Turned about the axis so that the fragment is at its true distance (Fig. 4:b).
-    TrueDistance,
+crate::vocabulary! {
+    /// How the section is filled.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+    pub enum SectionFill: "section fill", "section fills" {
+        /// Solid black (the usual convention for pottery).
+        Black = "black" => "Solid black, the usual convention for pottery",
+        /// 45-degree hatching.
+        Hatched = "hatched" => "45-degree hatching",
+    }
 }
 
-/// Which regularity map the regularity style shows (section 2.4.4).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-pub enum RegularityKind {
-    /// Distance of each point to the axis (Fig. 7:a).
-    AxisDistance,
-    /// Distance to the ideal vessel revolved from the section (Fig. 7:b).
-    IdealVessel,
+crate::vocabulary! {
+    /// Where the views stand relative to the axis (section 2.4.1).
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+    pub enum Placement: "placement", "placements" {
+        /// Front view beside the axis, regardless of the true position (Fig. 4:a).
+        Beside = "beside" => "The views beside the axis, whatever the true radius",
+        /// Turned about the axis so that the fragment is at its true distance (Fig. 4:b).
+        TrueDistance = "true_distance" => "The fragment at its true distance from the axis",
+    }
+}
+
+crate::vocabulary! {
+    /// Which regularity map the regularity style shows (section 2.4.4).
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+    pub enum RegularityKind: "regularity map", "regularity maps" {
+        /// Distance of each point to the axis (Fig. 7:a).
+        AxisDistance = "axis_distance" => "Distance of each vertex to the axis: blue near, red far",
+        /// Distance to the ideal vessel revolved from the section (Fig. 7:b).
+        IdealVessel = "ideal_vessel" => "Signed distance to the vessel revolved from the profile: blue inside the ideal wall, white on it, red outside",
+    }
+}
+
+crate::vocabulary! {
+    /// One measurement written under the drawing: a member of [`Annotations`].
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    pub enum AnnotationKind: "annotation", "annotations" {
+        /// [`Annotations::height`].
+        Height = "height" => "The preserved height along the axis",
+        /// [`Annotations::wall_thickness`].
+        WallThickness = "wall_thickness" => "The median wall thickness",
+        /// [`Annotations::capacity`].
+        Capacity = "capacity" => "The capacity, where the profile runs from base to rim",
+    }
 }
 
 /// The measurements written under the drawing besides the diameters and the preserved
@@ -159,9 +205,19 @@ impl Annotations {
     /// Every annotation.
     pub const ALL: Annotations = Annotations { height: true, wall_thickness: true, capacity: true };
 
-    /// The annotation names, as `sherd draw --annotations`, Python and the add-ons take
-    /// them (the command line also accepts hyphens: `wall-thickness`).
-    pub const NAMES: [&'static str; 3] = ["height", "wall_thickness", "capacity"];
+    /// The flag of one annotation.
+    pub fn flag_mut(&mut self, kind: AnnotationKind) -> &mut bool {
+        match kind {
+            AnnotationKind::Height => &mut self.height,
+            AnnotationKind::WallThickness => &mut self.wall_thickness,
+            AnnotationKind::Capacity => &mut self.capacity,
+        }
+    }
+
+    /// Whether the annotations include `kind`.
+    pub fn has(mut self, kind: AnnotationKind) -> bool {
+        *self.flag_mut(kind)
+    }
 
     /// Parses a comma-separated list of names, or `all`, or `none` (no annotation, the
     /// default). An empty list is refused: `none` says it.
@@ -171,7 +227,7 @@ impl Annotations {
             .map(|n| n.trim().to_ascii_lowercase().replace('-', "_"))
             .filter(|n| !n.is_empty())
             .collect();
-        let choices = || format!("{}, or all, or none", Annotations::NAMES.join(", "));
+        let choices = || format!("{}, or all, or none", AnnotationKind::names().join(", "));
         match names.iter().map(String::as_str).collect::<Vec<_>>()[..] {
             [] => return Err(Error::InvalidArgument(format!("no annotation given; choose among {}", choices()))),
             ["all"] => return Ok(Annotations::ALL),
@@ -180,10 +236,11 @@ impl Annotations {
         }
         let mut annotations = Annotations::default();
         for name in &names {
+            if let Some(kind) = AnnotationKind::find(name) {
+                *annotations.flag_mut(kind) = true;
+                continue;
+            }
             match name.as_str() {
-                "height" => annotations.height = true,
-                "wall_thickness" => annotations.wall_thickness = true,
-                "capacity" => annotations.capacity = true,
                 "all" | "none" => {
                     return Err(Error::InvalidArgument(format!(
                         "{name:?} cannot be combined with other annotations; give {}",

@@ -4,31 +4,14 @@
 use std::ffi::c_char;
 
 use super::buffer::{SherdBuffer, hand_out_text};
-use super::error::{Failure, FfiResult};
 use super::mesh::{SherdMesh, mesh_ref, ply_encoding};
 use super::orient::{SherdAxis, read_axis};
 use super::panic::guard;
 use super::pointers::{path_from, require, write_out};
 use super::status::SherdStatus;
-use crate::mesh::Mesh;
-use crate::orient::Axis;
-use super::reconstruct::reconstruction;
+use super::reconstruct::{reconstruction, section_at};
 use crate::profile::revolve::oriented_mesh;
-use crate::profile::section::{ProfileSection, most_informative_angle, profile_section};
-
-/// The section at `angle_rad`, or at the most informative angle when it is NaN.
-pub(crate) fn section_at(mesh: &Mesh, axis: &Axis, angle_rad: f64) -> FfiResult<ProfileSection> {
-    let angle = if angle_rad.is_nan() { most_informative_angle(mesh, axis) } else { angle_rad };
-    crate::profile::section::check_angle(angle)?;
-    let section = profile_section(mesh, axis, angle);
-    if section.is_empty() {
-        return Err(Failure::new(
-            SherdStatus::DegenerateGeometry,
-            format!("the half-plane at {angle} rad does not cut the mesh: no profile there"),
-        ));
-    }
-    Ok(section)
-}
+use crate::profile::section::most_informative_angle;
 
 /// Writes the mesh moved into the oriented frame (axis on z, base down, the fragment's
 /// centroid on +x: `sherd_mesh_oriented_transform`) as PLY, binary little-endian when
@@ -112,9 +95,6 @@ pub unsafe extern "C" fn sherd_profile_csv(
         unsafe { hand_out_text(out_csv, csv) }
     })
 }
-
-/// Steps per turn of a reconstruction when the caller passes 0: 2 degrees each.
-pub(crate) const DEFAULT_REVOLUTION_SEGMENTS: usize = 180;
 
 /// Writes the 3D reconstruction of the preserved part of the vessel as PLY: the closed
 /// outlines of the profile section at `angle_rad` (NaN: the most informative angle)

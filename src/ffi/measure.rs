@@ -4,12 +4,14 @@
 use super::buffer::{SherdBuffer, hand_out_report};
 use super::error::FfiResult;
 use super::mesh::{SherdMesh, mesh_ref};
-use super::options::{SherdMeasureOptions, options_or_default};
+use super::builder::{assign, at_most, builder, confidence_level, free_builder, new_builder, options_or_default};
 use super::orient::{SherdAxis, read_axis};
 use super::panic::guard;
 use super::pointers::{SizedStruct, checked_size, write_sized};
 use super::status::SherdStatus;
-use crate::profile::measure::Measurements;
+use super::refine::SherdRefineOptions;
+use super::pointers::borrow;
+use crate::profile::measure::{MeasureOptions, Measurements};
 
 /// The measurements of an oriented fragment, in millimetres, degrees and litres. A
 /// figure the fragment does not determine (no rim preserved, no interval computed, a
@@ -134,5 +136,82 @@ pub unsafe extern "C" fn sherd_measure(
         let measurements = crate::profile::measure::measure(mesh, &axis, &options);
         unsafe { write_sized(out_measurements, SherdMeasurements::from_measurements(&measurements), "out_measurements") }?;
         unsafe { hand_out_report(out_json, &measurements) }
+    })
+}
+
+// ---------------------------------------------------------------- options
+
+/// Options of `sherd_measure`.
+pub struct SherdMeasureOptions {
+    pub(crate) options: MeasureOptions,
+}
+
+builder!(SherdMeasureOptions => MeasureOptions);
+
+/// Creates measurement options with the library's defaults (intervals from a bootstrap
+/// of the default refinement).
+///
+/// # Safety
+/// `out_options` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_measure_options_new(out_options: *mut *mut SherdMeasureOptions) -> SherdStatus {
+    guard("sherd_measure_options_new", || unsafe {
+        new_builder(out_options, SherdMeasureOptions { options: MeasureOptions::default() })
+    })
+}
+
+/// Releases measurement options; NULL is ignored.
+///
+/// # Safety
+/// `options` must be NULL or a live handle, not freed before.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_measure_options_free(options: *mut SherdMeasureOptions) {
+    unsafe { free_builder(options) }
+}
+
+/// The refinement the intervals' bootstrap repeats: a copy of `refine_options` (pass the
+/// options the axis was refined with).
+///
+/// # Safety
+/// `options` and `refine_options` must be live handles.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_measure_options_set_refine_options(
+    options: *mut SherdMeasureOptions,
+    refine_options: *const SherdRefineOptions,
+) -> SherdStatus {
+    assign("sherd_measure_options_set_refine_options", options, |o| &mut o.refine, || {
+        Ok(unsafe { borrow(refine_options, "refine_options") }?.options.clone())
+    })
+}
+
+/// Number of bootstrap resamples behind the intervals (at most 10000); 0 gives no
+/// intervals (NaN), and so do fewer than 5 usable resamples.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_measure_options_set_bootstrap_samples(options: *mut SherdMeasureOptions, samples: usize) -> SherdStatus {
+    assign("sherd_measure_options_set_bootstrap_samples", options, |o| &mut o.bootstrap.samples, || {
+        at_most(samples, crate::refine::uncertainty::MAX_BOOTSTRAP_SAMPLES, "samples")
+    })
+}
+
+/// Seed of the bootstrap's resampling (the same seed gives the same intervals).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_measure_options_set_bootstrap_seed(options: *mut SherdMeasureOptions, seed: u64) -> SherdStatus {
+    assign("sherd_measure_options_set_bootstrap_seed", options, |o| &mut o.bootstrap.seed, || Ok(seed))
+}
+
+/// Confidence level of the intervals, in (0, 1) (default 0.95).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_measure_options_set_confidence(options: *mut SherdMeasureOptions, confidence: f64) -> SherdStatus {
+    assign("sherd_measure_options_set_confidence", options, |o| &mut o.bootstrap.confidence, || {
+        confidence_level(confidence, "confidence")
     })
 }

@@ -5,11 +5,12 @@ use std::ffi::c_char;
 
 use super::buffer::{SherdBuffer, hand_out_report};
 use super::error::{Failure, FfiResult};
-use super::options::{SherdRepairOptions, options_or_default};
+use super::builder::{assign, builder, free_builder, new_builder, options_or_default, positive_or_default};
 use super::panic::guard;
 use super::pointers::{borrow, borrow_mut, host_slice, host_slice_mut, path_from, require, write_out};
 use super::status::SherdStatus;
 use crate::mesh::io::PlyEncoding;
+use crate::mesh::repair::RepairOptions;
 use crate::mesh::{Mesh, Point, Vector};
 
 /// An owned triangle mesh (or point cloud) in the scan's frame and units.
@@ -493,4 +494,54 @@ pub unsafe extern "C" fn sherd_mesh_decimate(mesh: *const SherdMesh, target_face
         let decimated = crate::mesh::decimate::decimate(mesh, target_faces)?;
         unsafe { hand_out(out_mesh, decimated) }
     })
+}
+
+// ---------------------------------------------------------------- repair options
+
+/// Options of `sherd_mesh_repair`.
+pub struct SherdRepairOptions {
+    pub(crate) options: RepairOptions,
+}
+
+builder!(SherdRepairOptions => RepairOptions);
+
+/// Creates repair options with the library's defaults.
+///
+/// # Safety
+/// `out_options` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_repair_options_new(out_options: *mut *mut SherdRepairOptions) -> SherdStatus {
+    guard("sherd_repair_options_new", || unsafe {
+        new_builder(out_options, SherdRepairOptions { options: RepairOptions::default() })
+    })
+}
+
+/// Releases repair options; NULL is ignored.
+///
+/// # Safety
+/// `options` must be NULL or a live handle, not freed before.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_repair_options_free(options: *mut SherdRepairOptions) {
+    unsafe { free_builder(options) }
+}
+
+/// Merges vertices closer than `tolerance_mm` (finite, positive); 0 merges only exact
+/// duplicates.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_repair_options_set_merge_tolerance_mm(options: *mut SherdRepairOptions, tolerance_mm: f64) -> SherdStatus {
+    assign("sherd_repair_options_set_merge_tolerance_mm", options, |o| &mut o.merge_tolerance_mm, || {
+        positive_or_default(tolerance_mm, "tolerance_mm")
+    })
+}
+
+/// Keeps only the largest connected component (scanner debris removed) when `keep` is true.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_repair_options_set_keep_largest_component(options: *mut SherdRepairOptions, keep: bool) -> SherdStatus {
+    assign("sherd_repair_options_set_keep_largest_component", options, |o| &mut o.keep_largest_component, || Ok(keep))
 }

@@ -7,13 +7,14 @@
 //! algorithm lives here: each entry point converts, calls the Rust API and converts back.
 
 pub mod buffer;
+mod builder;
 pub mod draw;
+pub mod enums;
 pub mod error;
 pub mod export;
 pub mod measure;
 pub mod mesh;
 pub mod orient;
-pub mod options;
 mod panic;
 pub mod pipeline;
 pub mod reconstruct;
@@ -22,14 +23,15 @@ pub mod refine;
 pub mod status;
 pub mod synth;
 pub mod version;
+pub mod vocabulary;
 
 pub use buffer::*;
 pub use draw::*;
+pub use enums::*;
 pub use error::sherd_last_error_message;
 pub use export::*;
 pub use measure::*;
 pub use mesh::*;
-pub use options::*;
 pub use orient::*;
 pub use pipeline::*;
 pub use reconstruct::*;
@@ -37,3 +39,4 @@ pub use refine::*;
 pub use status::*;
 pub use synth::*;
 pub use version::*;
+pub use vocabulary::*;

@@ -4,12 +4,12 @@
 use super::buffer::{SherdBuffer, hand_out_report};
 use super::error::{Failure, FfiResult};
 use super::mesh::{SherdMesh, mesh_ref};
-use super::options::{SherdManualOptions, SherdOrientOptions, options_or_default};
+use super::builder::{assign, builder, fraction, free_builder, new_builder, options_or_default, positive_count, positive_or_default, at_most};
 use super::panic::guard;
 use super::pointers::{SizedStruct, checked_size, host_slice, host_slice_mut, read_sized, require, write_out, write_sized};
 use super::status::SherdStatus;
 use crate::mesh::Point;
-use crate::orient::{Axis, AxisRecord, Orientation, Verdict};
+use crate::orient::{Axis, AxisRecord, ManualOptions, OrientOptions, Orientation, Verdict};
 use crate::profile::rills::{three_points_on, trace_rills_under, RillOptions};
 use crate::profile::section::oriented_frame;
 
@@ -286,5 +286,127 @@ pub unsafe extern "C" fn sherd_points_on_longest_rill(
             None => 0,
         };
         unsafe { write_out(out_point_count, count, "out_point_count") }
+    })
+}
+
+// ---------------------------------------------------------------- automatic orientation options
+
+/// Options of `sherd_orient_automatic`.
+pub struct SherdOrientOptions {
+    pub(crate) options: OrientOptions,
+}
+
+builder!(SherdOrientOptions => OrientOptions);
+
+/// Creates automatic-orientation options with the library's defaults (the paper's).
+///
+/// # Safety
+/// `out_options` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_orient_options_new(out_options: *mut *mut SherdOrientOptions) -> SherdStatus {
+    guard("sherd_orient_options_new", || unsafe {
+        new_builder(out_options, SherdOrientOptions { options: OrientOptions::default() })
+    })
+}
+
+/// Releases orientation options; NULL is ignored.
+///
+/// # Safety
+/// `options` must be NULL or a live handle, not freed before.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_orient_options_free(options: *mut SherdOrientOptions) {
+    unsafe { free_builder(options) }
+}
+
+/// Vertex count of the decimated working copy the axis is estimated on (default 10000,
+/// as in the paper); at least 1.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_orient_options_set_target_vertex_count(options: *mut SherdOrientOptions, count: usize) -> SherdStatus {
+    assign("sherd_orient_options_set_target_vertex_count", options, |o| &mut o.target_vertex_count, || {
+        positive_count(count, "count")
+    })
+}
+
+/// Laplacian smoothing iterations of the working copy (default 5; 0 disables; at most
+/// 1000).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_orient_options_set_smoothing_iterations(options: *mut SherdOrientOptions, iterations: usize) -> SherdStatus {
+    assign("sherd_orient_options_set_smoothing_iterations", options, |o| &mut o.smoothing_iterations, || {
+        at_most(iterations, crate::orient::MAX_SMOOTHING_ITERATIONS, "iterations")
+    })
+}
+
+/// Confidence of the opposite-normal test that separates the inner and outer surfaces
+/// (default 0.95, in (0, 1)); 0 skips the test.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_orient_options_set_opposite_normal_confidence(options: *mut SherdOrientOptions, confidence: f64) -> SherdStatus {
+    assign("sherd_orient_options_set_opposite_normal_confidence", options, |o| &mut o.opposite_normal_confidence, || {
+        match confidence {
+            0.0 => Ok(None),
+            c if c > 0.0 && c < 1.0 => Ok(Some(c)),
+            c => Err(Failure::invalid(format!("`confidence` must be 0 (no test) or in (0, 1), got {c}"))),
+        }
+    })
+}
+
+// ---------------------------------------------------------------- manual orientation options
+
+/// Options of `sherd_orient_from_three_points`.
+pub struct SherdManualOptions {
+    pub(crate) options: ManualOptions,
+}
+
+builder!(SherdManualOptions => ManualOptions);
+
+/// Creates manual-orientation options with the library's defaults.
+///
+/// # Safety
+/// `out_options` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_manual_options_new(out_options: *mut *mut SherdManualOptions) -> SherdStatus {
+    guard("sherd_manual_options_new", || unsafe {
+        new_builder(out_options, SherdManualOptions { options: ManualOptions::default() })
+    })
+}
+
+/// Releases manual-orientation options; NULL is ignored.
+///
+/// # Safety
+/// `options` must be NULL or a live handle, not freed before.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_manual_options_free(options: *mut SherdManualOptions) {
+    unsafe { free_builder(options) }
+}
+
+/// Fraction of the vertices kept as the surface the axis is fitted to, those whose
+/// normal lines pass closest to the picked axis first (default 0.5, the paper's; in (0, 1]).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_manual_options_set_keep_fraction(options: *mut SherdManualOptions, keep_fraction: f64) -> SherdStatus {
+    assign("sherd_manual_options_set_keep_fraction", options, |o| &mut o.keep_fraction, || {
+        fraction(keep_fraction, "keep_fraction")
+    })
+}
+
+/// A picked point farther than `distance_mm` from every vertex is an error (default:
+/// 2% of the bounding-box diagonal, restored by passing 0).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_manual_options_set_max_pick_distance_mm(options: *mut SherdManualOptions, distance_mm: f64) -> SherdStatus {
+    assign("sherd_manual_options_set_max_pick_distance_mm", options, |o| &mut o.max_pick_distance_mm, || {
+        positive_or_default(distance_mm, "distance_mm")
     })
 }

@@ -6,13 +6,13 @@ use std::ffi::c_char;
 use super::buffer::{SherdBuffer, hand_out_report};
 use super::error::{Failure, FfiResult};
 use super::mesh::{SherdMesh, mesh_ref};
-use super::options::SherdRefineOptions;
+use super::refine::SherdRefineOptions;
 use super::orient::SherdAxis;
 use super::panic::guard;
 use super::pointers::{borrow, checked_size, path_from, write_sized};
 use super::status::SherdStatus;
 use crate::orient::Axis;
-use crate::pipeline::{Analysis, PipelineOptions, STATUS_NEEDS_MANUAL, STATUS_SENSE_UNCERTAIN, SherdRecord};
+use crate::pipeline::{Analysis, PipelineOptions, RecordStatus, SherdRecord};
 
 /// The pipeline's options: scan units and the refinement (NULL: the command-line tool's
 /// default, criterion AUTO on both surfaces). Checks `out_axis` too, before the long work.
@@ -62,9 +62,9 @@ unsafe fn hand_out_analysis(
         unsafe { write_sized(out_axis, SherdAxis::from_axis(&axis), "out_axis") }?;
     }
     unsafe { hand_out_report(out_record_json, &record) }?;
-    match record.status.as_str() {
-        STATUS_NEEDS_MANUAL => Err(Failure::new(SherdStatus::NeedsManualOrientation, record.reason.clone().unwrap_or_default())),
-        STATUS_SENSE_UNCERTAIN => Err(Failure::new(SherdStatus::SenseUncertain, record.reason.clone().unwrap_or_default())),
+    match record.status {
+        RecordStatus::NeedsManualOrientation => Err(Failure::new(SherdStatus::NeedsManualOrientation, record.reason.clone().unwrap_or_default())),
+        RecordStatus::SenseUncertain => Err(Failure::new(SherdStatus::SenseUncertain, record.reason.clone().unwrap_or_default())),
         _ => Ok(()),
     }
 }

@@ -169,3 +169,13 @@ pub(crate) unsafe fn path_from<'a>(path: *const std::ffi::c_char, name: &str) ->
             .map_err(|e| Failure::invalid(format!("`{name}` is not UTF-8: {e}")))
     }
 }
+
+/// The UTF-8 text of the NUL-terminated string `text`.
+///
+/// # Safety
+/// A non-NULL `text` must point to a NUL-terminated string that lives for `'a`.
+pub(crate) unsafe fn text_from<'a>(text: *const std::ffi::c_char, name: &str) -> FfiResult<&'a str> {
+    check_pointer(text, name)?;
+    let text = unsafe { std::ffi::CStr::from_ptr(text) };
+    text.to_str().map_err(|e| Failure::invalid(format!("`{name}` is not UTF-8: {e}")))
+}

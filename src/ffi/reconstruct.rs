@@ -6,9 +6,8 @@
 //! capacity; a smaller capacity gives `SHERD_STATUS_BUFFER_TOO_SMALL` with nothing written.
 
 use super::error::{Failure, FfiResult};
-use super::export::{DEFAULT_REVOLUTION_SEGMENTS, section_at};
 use super::mesh::{SherdMesh, copy_out, hand_out, mesh_ref};
-use super::options::SherdRegularity;
+use super::enums::{CEnum, SherdRegularity};
 use super::orient::{SherdAxis, read_axis};
 use super::panic::guard;
 use super::pointers::{host_slice_mut, require};
@@ -18,6 +17,24 @@ use crate::mesh::Mesh;
 use crate::orient::Axis;
 use crate::profile::regularity::{ColorMap, axis_distance_map, ideal_vessel_map};
 use crate::profile::revolve::revolve_profile;
+use crate::profile::section::{ProfileSection, most_informative_angle, profile_section};
+
+/// Steps per turn of a reconstruction when the caller passes 0: 2 degrees each.
+pub(crate) const DEFAULT_REVOLUTION_SEGMENTS: usize = 180;
+
+/// The section at `angle_rad`, or at the most informative angle when it is NaN.
+pub(crate) fn section_at(mesh: &Mesh, axis: &Axis, angle_rad: f64) -> FfiResult<ProfileSection> {
+    let angle = if angle_rad.is_nan() { most_informative_angle(mesh, axis) } else { angle_rad };
+    crate::profile::section::check_angle(angle)?;
+    let section = profile_section(mesh, axis, angle);
+    if section.is_empty() {
+        return Err(Failure::new(
+            SherdStatus::DegenerateGeometry,
+            format!("the half-plane at {angle} rad does not cut the mesh: no profile there"),
+        ));
+    }
+    Ok(section)
+}
 
 /// The preserved part of the vessel revolved from the section at `angle_rad` (NaN: the
 /// most informative angle) with `segments` steps (0: the default).
@@ -98,7 +115,7 @@ pub unsafe extern "C" fn sherd_regularity(
     guard("sherd_regularity", || {
         let mesh = unsafe { mesh_ref(mesh, "mesh") }?;
         let axis = unsafe { read_axis(axis, "axis") }?;
-        let kind = SherdRegularity::parse(regularity)?;
+        let kind = SherdRegularity::parse(regularity, "regularity")?;
         if out_values.is_null() && out_rgba.is_null() && out_value_range.is_null() {
             return Err(Failure::new(
                 SherdStatus::NullPointer,

@@ -3,206 +3,17 @@
 //! front.
 
 use super::buffer::{SherdBuffer, hand_out_report, hand_out_text};
+use super::builder::{Builder, assign, at_most, builder, finite_positive, free_builder, new_builder, options_or_default, set};
+use super::enums::{CEnum, SherdCircleFit, SherdCriterion, SherdEdge, SherdParetoChoice, SherdProfileMethod, SherdSurface};
 use super::error::{Failure, FfiResult};
 use super::mesh::{SherdMesh, mesh_ref};
-use super::options::{SherdRefineOptions, options_or_default};
 use super::orient::{SherdAxis, read_axis};
 use super::panic::guard;
 use super::pointers::{SizedStruct, borrow, host_slice_mut, require, write_out, write_sized};
 use super::status::SherdStatus;
-use crate::refine::circle_fit::CircleFitMethod;
-use crate::refine::pareto::ParetoChoice;
-use crate::refine::profile::ProfileMethod;
-use crate::refine::tangent::Edge;
-use crate::refine::{Criterion, Refinement, Surface};
-
-/// The refinement criteria (`SherdRefineOptions`' criterion, and the one a report says
-/// was used).
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SherdCriterion {
-    /// Horizontal circles: radius variance (Eq. 2).
-    Circles = 0,
-    /// Circle centres and residuals on a Pareto front (Eq. 3-4).
-    Pareto = 1,
-    /// Vertical profile superposition (Eq. 5-6).
-    Profile = 2,
-    /// Tangent plane to the rim or base (Eq. 7), then circles for the position.
-    Tangent = 3,
-    /// The tangent plane when the fragment keeps a level rim or base; otherwise circles,
-    /// averaged with the profile criterion where the two agree within 5 degrees.
-    Auto = 4,
-}
-
-impl SherdCriterion {
-    /// The criterion for a value from the host.
-    pub(crate) fn parse(value: u32) -> FfiResult<Criterion> {
-        Ok(match value {
-            0 => Criterion::Circles,
-            1 => Criterion::Pareto,
-            2 => Criterion::Profile,
-            3 => Criterion::Tangent,
-            4 => Criterion::Auto,
-            other => return Err(Failure::invalid(format!("`criterion` {other} is not a SHERD_CRITERION_* value (0 to 4)"))),
-        })
-    }
-
-    fn of(criterion: Criterion) -> Self {
-        match criterion {
-            Criterion::Circles => SherdCriterion::Circles,
-            Criterion::Pareto => SherdCriterion::Pareto,
-            Criterion::Profile => SherdCriterion::Profile,
-            Criterion::Tangent => SherdCriterion::Tangent,
-            Criterion::Auto => SherdCriterion::Auto,
-        }
-    }
-}
-
-/// Which solution of the Pareto front becomes the axis (`sherd_refine_options_set_pareto_choice`).
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SherdParetoChoice {
-    /// The knee: the smallest product of the two costs (the default).
-    Knee = 0,
-    /// The best centre dispersion (Eq. 3 alone).
-    Centres = 1,
-    /// The best circle residual (Eq. 4 alone).
-    Residuals = 2,
-    /// The mean of the tilts of the `count` best solutions by their scaled costs (the
-    /// original tool takes 2).
-    MeanOfBest = 3,
-}
-
-impl SherdParetoChoice {
-    /// The choice for a value and count from the host.
-    pub(crate) fn parse(value: u32, count: usize) -> FfiResult<ParetoChoice> {
-        Ok(match value {
-            0 => ParetoChoice::Knee,
-            1 => ParetoChoice::Centres,
-            2 => ParetoChoice::Residuals,
-            3 => ParetoChoice::MeanOfBest(count),
-            other => return Err(Failure::invalid(format!("`choice` {other} is not a SHERD_PARETO_CHOICE_* value (0 to 3)"))),
-        })
-    }
-}
-
-/// The edge the tangent plane (Eq. 7) rests on (`sherd_refine_options_set_edge`).
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SherdEdge {
-    /// The one whose extremes are level (the default).
-    Detect = 0,
-    /// The rim: the highest point per vertical section.
-    Rim = 1,
-    /// The base: the lowest point per vertical section.
-    Base = 2,
-}
-
-impl SherdEdge {
-    /// The edge for a value from the host (`None`: detect it).
-    pub(crate) fn parse(value: u32) -> FfiResult<Option<Edge>> {
-        Ok(match value {
-            0 => None,
-            1 => Some(Edge::Rim),
-            2 => Some(Edge::Base),
-            other => return Err(Failure::invalid(format!("`edge` {other} is not a SHERD_EDGE_* value (0 to 2)"))),
-        })
-    }
-}
-
-/// The form of the profile criterion (`sherd_refine_options_set_profile_method`).
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SherdProfileMethod {
-    /// Eq. 5: distance to the longest vertical profile; the parameter is the number of
-    /// vertical sections (2 to 1000).
-    Reference = 0,
-    /// Eq. 6: a polynomial profile per skin; the parameter is its degree (1 to 20).
-    Polynomial = 1,
-    /// Eq. 6 with a cubic spline profile per skin (the default); the parameter is the
-    /// distance between its knots, mm (0.1 to 1000; 1.5 by default).
-    Spline = 2,
-}
-
-impl SherdProfileMethod {
-    /// The method for a value and parameter from the host.
-    pub(crate) fn parse(value: u32, parameter: f64) -> FfiResult<ProfileMethod> {
-        let whole = || {
-            if parameter.fract() == 0.0 && (0.0..=1e6).contains(&parameter) {
-                Ok(parameter as usize)
-            } else {
-                Err(Failure::invalid(format!("`parameter` must be a whole number for this method, got {parameter}")))
-            }
-        };
-        let method = match value {
-            0 => ProfileMethod::ReferenceProfile { vertical_sections: whole()? },
-            1 => ProfileMethod::Polynomial { degree: whole()? },
-            2 => ProfileMethod::Spline { knot_spacing_mm: parameter },
-            other => return Err(Failure::invalid(format!("`method` {other} is not a SHERD_PROFILE_METHOD_* value (0 to 2)"))),
-        };
-        Ok(method.validated()?)
-    }
-}
-
-/// The circle fit of each horizontal section in the Pareto criterion (Chernov), for
-/// `sherd_refine_options_set_circle_fit`.
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SherdCircleFit {
-    /// Kåsa's algebraic fit: fast, biased towards small radii on short arcs.
-    Kasa = 0,
-    /// Pratt's algebraic fit.
-    Pratt = 1,
-    /// Taubin's algebraic fit: nearly unbiased (the default).
-    Taubin = 2,
-    /// The geometric fit (orthogonal distances), started from Taubin's.
-    Geometric = 3,
-}
-
-impl SherdCircleFit {
-    /// The fit for a value from the host.
-    pub(crate) fn parse(value: u32) -> FfiResult<CircleFitMethod> {
-        Ok(match value {
-            0 => CircleFitMethod::Kasa,
-            1 => CircleFitMethod::Pratt,
-            2 => CircleFitMethod::Taubin,
-            3 => CircleFitMethod::Geometric,
-            other => return Err(Failure::invalid(format!("`method` {other} is not a SHERD_CIRCLE_FIT_* value (0 to 3)"))),
-        })
-    }
-}
-
-/// The surfaces a refinement looks at.
-#[repr(u32)]
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SherdSurface {
-    /// The inside of the vessel.
-    Inner = 0,
-    /// The outside of the vessel.
-    Outer = 1,
-    /// Both skins, each on its own.
-    Both = 2,
-}
-
-impl SherdSurface {
-    /// The surface for a value from the host.
-    pub(crate) fn parse(value: u32) -> FfiResult<Surface> {
-        Ok(match value {
-            0 => Surface::Inner,
-            1 => Surface::Outer,
-            2 => Surface::Both,
-            other => return Err(Failure::invalid(format!("`surface` {other} is not a SHERD_SURFACE_* value (0 to 2)"))),
-        })
-    }
-
-    fn of(surface: Surface) -> Self {
-        match surface {
-            Surface::Inner => SherdSurface::Inner,
-            Surface::Outer => SherdSurface::Outer,
-            Surface::Both => SherdSurface::Both,
-        }
-    }
-}
+use crate::refine::pareto::ParetoOptions;
+use crate::refine::profile::{ProfileMethod, ProfileMethodKind};
+use crate::refine::{EdgeChoice, MAX_SEARCH_BOUND_DEG, RefineOptions, Refinement};
 
 /// A refined axis with its report and, for the Pareto criterion, the front. Created by
 /// `sherd_refine`, released with `sherd_refinement_free`.
@@ -321,8 +132,8 @@ pub unsafe extern "C" fn sherd_refinement_report(refinement: *const SherdRefinem
         let report = &refinement.report;
         let summary = SherdRefineReport {
             size: size_of::<SherdRefineReport>(),
-            criterion: SherdCriterion::of(report.method) as u32,
-            surface: SherdSurface::of(report.surface) as u32,
+            criterion: SherdCriterion::value_of(report.method),
+            surface: SherdSurface::value_of(report.surface),
             iterations: report.iterations,
             start_residual_mm: report.start_residual_mm,
             residual_mm: report.residual_mm,
@@ -422,4 +233,174 @@ pub unsafe extern "C" fn sherd_refinement_free(refinement: *mut SherdRefinement)
     if !refinement.is_null() {
         drop(unsafe { Box::from_raw(refinement) });
     }
+}
+
+// ---------------------------------------------------------------- options
+
+/// Options of `sherd_refine`.
+pub struct SherdRefineOptions {
+    pub(crate) options: RefineOptions,
+}
+
+builder!(SherdRefineOptions => RefineOptions);
+
+/// The profile criterion's form for a method and parameter from the host.
+fn profile_method(method: u32, parameter: f64) -> FfiResult<ProfileMethod> {
+    let whole = || {
+        if parameter.fract() == 0.0 && (0.0..=1e6).contains(&parameter) {
+            Ok(parameter as usize)
+        } else {
+            Err(Failure::invalid(format!("`parameter` must be a whole number for this method, got {parameter}")))
+        }
+    };
+    let method = match SherdProfileMethod::parse(method, "method")? {
+        ProfileMethodKind::Reference => ProfileMethod::ReferenceProfile { vertical_sections: whole()? },
+        ProfileMethodKind::Polynomial => ProfileMethod::Polynomial { degree: whole()? },
+        ProfileMethodKind::Spline => ProfileMethod::Spline { knot_spacing_mm: parameter },
+    };
+    Ok(method.validated()?)
+}
+
+/// Creates refinement options with the library's defaults (criterion AUTO, both surfaces).
+///
+/// # Safety
+/// `out_options` must be writable.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_new(out_options: *mut *mut SherdRefineOptions) -> SherdStatus {
+    guard("sherd_refine_options_new", || unsafe {
+        new_builder(out_options, SherdRefineOptions { options: RefineOptions::default() })
+    })
+}
+
+/// Releases refinement options; NULL is ignored.
+///
+/// # Safety
+/// `options` must be NULL or a live handle, not freed before.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_free(options: *mut SherdRefineOptions) {
+    unsafe { free_builder(options) }
+}
+
+/// The criterion: a `SHERD_CRITERION_*` value; others give `SHERD_STATUS_INVALID_ARGUMENT`.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_criterion(options: *mut SherdRefineOptions, criterion: u32) -> SherdStatus {
+    assign("sherd_refine_options_set_criterion", options, |o| &mut o.criterion, || SherdCriterion::parse(criterion, "criterion"))
+}
+
+/// The surface: a `SHERD_SURFACE_*` value; others give `SHERD_STATUS_INVALID_ARGUMENT`.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_surface(options: *mut SherdRefineOptions, surface: u32) -> SherdStatus {
+    assign("sherd_refine_options_set_surface", options, |o| &mut o.surface, || SherdSurface::parse(surface, "surface"))
+}
+
+/// Number of horizontal sections (at most 10000); 0 lets the library choose from the
+/// sherd's height.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_section_count(options: *mut SherdRefineOptions, section_count: usize) -> SherdStatus {
+    assign("sherd_refine_options_set_section_count", options, |o| &mut o.section_count, || {
+        let section_count = at_most(section_count, crate::refine::MAX_SECTION_COUNT, "section_count")?;
+        Ok((section_count > 0).then_some(section_count))
+    })
+}
+
+/// Largest tilt from the start axis the search considers, degrees (finite, positive, at
+/// most 45; the paper's 10 by default).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_search_bound_deg(options: *mut SherdRefineOptions, bound_deg: f64) -> SherdStatus {
+    assign("sherd_refine_options_set_search_bound_deg", options, |o| &mut o.search_bound_deg, || {
+        match finite_positive(bound_deg, "bound_deg")? {
+            bound if bound <= MAX_SEARCH_BOUND_DEG => Ok(bound),
+            bound => Err(Failure::invalid(format!("`bound_deg` must be at most {MAX_SEARCH_BOUND_DEG}, got {bound}"))),
+        }
+    })
+}
+
+/// Which solution of the Pareto front becomes the axis: a `SHERD_PARETO_CHOICE_*` value;
+/// `count` is the number of best solutions averaged by `SHERD_PARETO_CHOICE_MEAN_OF_BEST`
+/// (at least 1) and is ignored by the others.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_pareto_choice(options: *mut SherdRefineOptions, choice: u32, count: usize) -> SherdStatus {
+    set("sherd_refine_options_set_pareto_choice", options, |builder| {
+        let pareto = &mut builder.options_mut().pareto;
+        *pareto = ParetoOptions { choice: SherdParetoChoice::parse(choice, "choice")?.with_count(count), ..pareto.clone() }.validated()?;
+        Ok(())
+    })
+}
+
+/// The Pareto criterion's limits per horizontal section (Eq. 3-4): sections with fewer
+/// than `min_points` points (at least 3) or an arc under `min_sector_deg` degrees (finite,
+/// 0 to 360) are left out. The defaults are 10 points and 3 degrees.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_pareto_section_limits(
+    options: *mut SherdRefineOptions,
+    min_points: usize,
+    min_sector_deg: f64,
+) -> SherdStatus {
+    set("sherd_refine_options_set_pareto_section_limits", options, |builder| {
+        let pareto = &mut builder.options_mut().pareto;
+        *pareto = ParetoOptions { min_section_points: min_points, min_sector_angle_deg: min_sector_deg, ..pareto.clone() }
+            .validated()?;
+        Ok(())
+    })
+}
+
+/// The form of the profile criterion: a `SHERD_PROFILE_METHOD_*` value and its parameter
+/// (the number of vertical sections of Eq. 5, the degree of Eq. 6's polynomial, or the
+/// knot spacing of its spline in mm; see the values).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_profile_method(options: *mut SherdRefineOptions, method: u32, parameter: f64) -> SherdStatus {
+    assign("sherd_refine_options_set_profile_method", options, |o| &mut o.profile_method, || profile_method(method, parameter))
+}
+
+/// The circle fit of the Pareto criterion's sections: a `SHERD_CIRCLE_FIT_*` value.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_circle_fit(options: *mut SherdRefineOptions, method: u32) -> SherdStatus {
+    assign("sherd_refine_options_set_circle_fit", options, |o| &mut o.pareto.circle_fit, || SherdCircleFit::parse(method, "method"))
+}
+
+/// The tangent plane's tolerance epsilon (Eq. 7), mm (finite, positive; 3 by default): a
+/// vertical section whose extreme lies farther than this below the rim's highest point
+/// (above the base's lowest) is taken for damaged and left out.
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_tangent_tolerance_mm(options: *mut SherdRefineOptions, tolerance_mm: f64) -> SherdStatus {
+    assign("sherd_refine_options_set_tangent_tolerance_mm", options, |o| &mut o.tangent_tolerance_mm, || {
+        finite_positive(tolerance_mm, "tolerance_mm")
+    })
+}
+
+/// The edge the tangent plane rests on: a `SHERD_EDGE_*` value (`SHERD_EDGE_DETECT`, the
+/// default, takes the one whose extremes are level).
+///
+/// # Safety
+/// `options` must be a live handle.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn sherd_refine_options_set_edge(options: *mut SherdRefineOptions, edge: u32) -> SherdStatus {
+    assign("sherd_refine_options_set_edge", options, |o| &mut o.edge, || SherdEdge::parse(edge, "edge").map(EdgeChoice::edge))
 }

@@ -5,7 +5,8 @@
 //! `sherd_status_name`) are taken as plain integers and checked, because a Rust enum
 //! holding a value the host made up is undefined behaviour.
 
-use std::ffi::c_char;
+use std::ffi::{CStr, CString, c_char};
+use std::sync::OnceLock;
 
 /// The outcome of a call. `SHERD_STATUS_OK` is zero; every other value has a message
 /// from `sherd_last_error_message()` on the same thread.
@@ -61,23 +62,36 @@ impl SherdStatus {
         SherdStatus::SenseUncertain,
     ];
 
-    /// The name of the C constant, NUL-terminated.
-    fn c_name(self) -> &'static str {
-        match self {
-            SherdStatus::Ok => "SHERD_STATUS_OK\0",
-            SherdStatus::InvalidArgument => "SHERD_STATUS_INVALID_ARGUMENT\0",
-            SherdStatus::NullPointer => "SHERD_STATUS_NULL_POINTER\0",
-            SherdStatus::BufferTooSmall => "SHERD_STATUS_BUFFER_TOO_SMALL\0",
-            SherdStatus::NotAvailable => "SHERD_STATUS_NOT_AVAILABLE\0",
-            SherdStatus::Io => "SHERD_STATUS_IO\0",
-            SherdStatus::Parse => "SHERD_STATUS_PARSE\0",
-            SherdStatus::DegenerateGeometry => "SHERD_STATUS_DEGENERATE_GEOMETRY\0",
-            SherdStatus::NotConverged => "SHERD_STATUS_NOT_CONVERGED\0",
-            SherdStatus::NeedsManualOrientation => "SHERD_STATUS_NEEDS_MANUAL_ORIENTATION\0",
-            SherdStatus::Panic => "SHERD_STATUS_PANIC\0",
-            SherdStatus::SenseUncertain => "SHERD_STATUS_SENSE_UNCERTAIN\0",
-        }
+    /// The name of the C constant, e.g. `SHERD_STATUS_PARSE`: made once from the
+    /// variant's name, as cbindgen makes the header's, so that the names are written
+    /// nowhere else.
+    fn c_name(self) -> &'static CStr {
+        static NAMES: OnceLock<Vec<CString>> = OnceLock::new();
+        let names = NAMES.get_or_init(|| {
+            let prefix = screaming_snake_case("SherdStatus");
+            SherdStatus::ALL
+                .iter()
+                .map(|status| {
+                    let name = format!("{prefix}_{}", screaming_snake_case(&format!("{status:?}")));
+                    CString::new(name).expect("an identifier holds no NUL")
+                })
+                .collect()
+        });
+        let index = SherdStatus::ALL.iter().position(|known| *known == self).unwrap_or_default();
+        &names[index]
     }
+}
+
+/// `SHERD_STATUS` for `SherdStatus`: an identifier in the case of C constants.
+pub(crate) fn screaming_snake_case(camel_case: &str) -> String {
+    let mut name = String::new();
+    for (i, letter) in camel_case.chars().enumerate() {
+        if letter.is_ascii_uppercase() && i > 0 {
+            name.push('_');
+        }
+        name.push(letter.to_ascii_uppercase());
+    }
+    name
 }
 
 /// The name of a status constant as a static NUL-terminated string, e.g.
@@ -88,7 +102,6 @@ pub extern "C" fn sherd_status_name(status: u32) -> *const c_char {
     SherdStatus::ALL
         .iter()
         .find(|known| **known as u32 == status)
-        .map_or("SHERD_STATUS_UNKNOWN\0", |known| known.c_name())
+        .map_or(c"SHERD_STATUS_UNKNOWN", |known| known.c_name())
         .as_ptr()
-        .cast()
 }

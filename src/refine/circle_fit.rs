@@ -34,17 +34,19 @@ impl Circle {
     }
 }
 
-/// Which circle fit to use.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
-pub enum CircleFitMethod {
-    /// Kåsa: linear least squares on `x^2 + y^2 + Dx + Ey + F = 0`; fast, biased on short arcs.
-    Kasa,
-    /// Pratt: algebraic fit with the constraint `B^2 + C^2 - 4AD = 1`.
-    Pratt,
-    /// Taubin: algebraic fit with the gradient-weighted constraint; nearly unbiased.
-    Taubin,
-    /// Geometric: minimises the sum of squared orthogonal distances (started from Taubin).
-    Geometric,
+crate::vocabulary! {
+    /// Which circle fit to use.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+    pub enum CircleFitMethod: "circle fit", "circle fits" {
+        /// Kåsa: linear least squares on `x^2 + y^2 + Dx + Ey + F = 0`; fast, biased on short arcs.
+        Kasa = "kasa" => "Algebraic fit, biased towards small circles on short arcs",
+        /// Pratt: algebraic fit with the constraint `B^2 + C^2 - 4AD = 1`.
+        Pratt = "pratt" => "Algebraic fit",
+        /// Taubin: algebraic fit with the gradient-weighted constraint; nearly unbiased.
+        Taubin = "taubin" => "Algebraic fit, nearly unbiased on short arcs",
+        /// Geometric: minimises the sum of squared orthogonal distances (started from Taubin).
+        Geometric = "geometric" => "Least-squares distances, from Taubin's circle",
+    }
 }
 
 /// Centred second and third moments Chernov's algebraic fits work on.

@@ -33,10 +33,10 @@ use serde::{Deserialize, Serialize};
 
 pub use edges::{detect_edges, detect_edges_over, EDGE_LEVEL_FRACTION};
 pub use objective::FreeParameters;
-pub use pareto::{ParetoChoice, ParetoOptions, ParetoPoint};
-pub use profile::ProfileMethod;
+pub use pareto::{ParetoChoice, ParetoChoiceKind, ParetoOptions, ParetoPoint};
+pub use profile::{ProfileMethod, ProfileMethodKind};
 pub use sections::Surface;
-pub use tangent::Edge;
+pub use tangent::{Edge, EdgeChoice};
 
 use crate::mesh::Mesh;
 use crate::orient::Axis;
@@ -45,23 +45,25 @@ use edges::{detect_edges_levelled, face_for_levelling, flatter_by_plane, reaches
 use objective::{minimize, Minimum, Objective, SearchSettings};
 use sections::{AxisParameters, PreparedSurface};
 
-/// The refinement criterion.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
-pub enum Criterion {
-    /// Horizontal circles, radius variance (Eq. 2).
-    Circles,
-    /// Circle centres and residuals on a Pareto front (Eq. 3-4).
-    Pareto,
-    /// Vertical profile superposition (Eq. 5 or 6, see [`ProfileMethod`]).
-    Profile,
-    /// Tangent plane to the rim or base (Eq. 7), then the circles criterion for the position.
-    Tangent,
-    /// The tangent plane where the fragment keeps a level rim or base; otherwise the
-    /// circles criterion, its direction averaged with the profile superposition's where
-    /// the two agree within 5 degrees (the report's method is then `Circles`, its reason
-    /// says so).
-    #[default]
-    Auto,
+crate::vocabulary! {
+    /// The refinement criterion.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+    pub enum Criterion: "criterion", "criteria" {
+        /// The tangent plane where the fragment keeps a level rim or base; otherwise the
+        /// circles criterion, its direction averaged with the profile superposition's where
+        /// the two agree within 5 degrees (the report's method is then `Circles`, its reason
+        /// says so). Listed first: it is the default.
+        #[default]
+        Auto = "auto" => "Let the library choose the criterion",
+        /// Horizontal circles, radius variance (Eq. 2).
+        Circles = "circles" => "Concentric circles fitted to horizontal sections",
+        /// Circle centres and residuals on a Pareto front (Eq. 3-4).
+        Pareto = "pareto" => "Pareto front of centre dispersion and circle residual",
+        /// Vertical profile superposition (Eq. 5 or 6, see [`ProfileMethod`]).
+        Profile = "profile" => "Agreement of profile sections",
+        /// Tangent plane to the rim or base (Eq. 7), then the circles criterion for the position.
+        Tangent = "tangent" => "Tangent planes",
+    }
 }
 
 /// Settings of [`refine`].

@@ -89,6 +89,34 @@ pub enum ParetoChoice {
     MeanOfBest(usize),
 }
 
+crate::vocabulary! {
+    /// The kinds of [`ParetoChoice`], by name (`MeanOfBest` without its count).
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    pub enum ParetoChoiceKind: "Pareto choice", "Pareto choices" {
+        /// [`ParetoChoice::Knee`].
+        Knee = "knee" => "The front's solution with the smallest product of the two costs",
+        /// [`ParetoChoice::Centres`].
+        Centres = "centres" => "The best centre dispersion (Eq. 3 alone)",
+        /// [`ParetoChoice::Residuals`].
+        Residuals = "residuals" => "The best circle residual (Eq. 4 alone)",
+        /// [`ParetoChoice::MeanOfBest`].
+        MeanOfBest = "mean_of_best" => "The mean of the best solutions (the original tool takes 2)",
+    }
+}
+
+impl ParetoChoiceKind {
+    /// The choice of this kind; `count` is the number of best solutions `MeanOfBest`
+    /// averages (the others ignore it).
+    pub fn with_count(self, count: usize) -> ParetoChoice {
+        match self {
+            ParetoChoiceKind::Knee => ParetoChoice::Knee,
+            ParetoChoiceKind::Centres => ParetoChoice::Centres,
+            ParetoChoiceKind::Residuals => ParetoChoice::Residuals,
+            ParetoChoiceKind::MeanOfBest => ParetoChoice::MeanOfBest(count),
+        }
+    }
+}
+
 /// One evaluated tilt: both costs and the axis it gives.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ParetoPoint {

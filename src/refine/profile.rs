@@ -40,6 +40,19 @@ pub enum ProfileMethod {
     },
 }
 
+crate::vocabulary! {
+    /// The forms of [`ProfileMethod`], by name (without their parameter).
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    pub enum ProfileMethodKind: "profile method", "profile methods" {
+        /// [`ProfileMethod::ReferenceProfile`]; its parameter is the number of vertical sections.
+        Reference = "reference" => "Eq. 5: distance to the longest vertical section",
+        /// [`ProfileMethod::Polynomial`]; its parameter is the degree.
+        Polynomial = "polynomial" => "Eq. 6: a polynomial r(z) per skin",
+        /// [`ProfileMethod::Spline`]; its parameter is the knot spacing, mm.
+        Spline = "spline" => "Eq. 6 as a cubic spline r(z) per skin",
+    }
+}
+
 impl Default for ProfileMethod {
     /// The spline with knots 1.5 mm apart: fine enough for a lip's rounding and a
     /// carination, so that what is left at the vessel's axis is the scan's noise and the

@@ -24,6 +24,41 @@ pub enum Edge {
     Base,
 }
 
+crate::vocabulary! {
+    /// The edge the tangent plane (Eq. 7) rests on, as options name it: one of the
+    /// [`Edge`]s, or the one whose extremes are level.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+    pub enum EdgeChoice: "edge", "edges" {
+        /// The edge whose extremes are level (the default).
+        #[default]
+        Detect = "detect" => "The rim or base whose extremes are level",
+        /// The rim.
+        Rim = "rim" => "The tangent plane on the rim's highest points",
+        /// The base.
+        Base = "base" => "The tangent plane on the base's lowest points",
+    }
+}
+
+impl EdgeChoice {
+    /// The edge chosen, `None` to detect it (`RefineOptions::edge`).
+    pub fn edge(self) -> Option<Edge> {
+        match self {
+            EdgeChoice::Detect => None,
+            EdgeChoice::Rim => Some(Edge::Rim),
+            EdgeChoice::Base => Some(Edge::Base),
+        }
+    }
+
+    /// The choice that gives `edge` (`None`: detect it).
+    pub fn of(edge: Option<Edge>) -> EdgeChoice {
+        match edge {
+            None => EdgeChoice::Detect,
+            Some(Edge::Rim) => EdgeChoice::Rim,
+            Some(Edge::Base) => EdgeChoice::Base,
+        }
+    }
+}
+
 impl Edge {
     /// +1 for the rim, -1 for the base: the sign of a height (or of a normal's component
     /// along the axis) that points away from the piece at this edge.

@@ -453,6 +453,26 @@ def test_declined_sherd(vendored, operators):
     expect_cancelled(operators, bpy.ops.sherd.use_best_guess, "no best guess")
 
 
+def test_choices_are_the_library_names(vendored, operators):
+    """Every menu of the add-on offers the library's names (read through the C ABI's
+    sherd_vocabulary_entry), in the library's order, with its descriptions."""
+    menus = {"CRITERION": operators.CRITERION_ITEMS, "SURFACE": operators.SURFACE_ITEMS,
+             "PARETO_CHOICE": operators.PARETO_CHOICE_ITEMS, "EDGE": operators.EDGE_ITEMS,
+             "CIRCLE_FIT": operators.CIRCLE_FIT_ITEMS, "PROFILE_METHOD": operators.PROFILE_FORM_ITEMS,
+             "STYLE": operators.STYLE_ITEMS, "PLACEMENT": operators.PLACEMENT_ITEMS,
+             "SECTION_FILL": operators.SECTION_FILL_ITEMS, "ANNOTATION": operators.ANNOTATION_ITEMS,
+             "REGULARITY": operators.REGULARITY_ITEMS}
+    for vocabulary, items in menus.items():
+        entries = vendored.vocabulary.entries(vendored.Vocabulary[vocabulary])
+        assert [(name, description) for name, _, description in entries] == \
+            [(identifier, description) for identifier, _, description in items], vocabulary
+    # The registered properties offer them too (Blender keeps its own copy of the items).
+    offered = [item.identifier for item in bpy.context.scene.sherd.bl_rna.properties["criterion"].enum_items]
+    assert offered == vendored.vocabulary.names(vendored.Vocabulary.CRITERION), offered
+    offered = [item.identifier for item in bpy.context.scene.sherd.bl_rna.properties["drawing_style"].enum_items]
+    assert offered == vendored.vocabulary.names(vendored.Vocabulary.STYLE), offered
+
+
 def test_bad_input(vendored, operators):
     clear_scene()
     empty_object = bpy.data.objects.new("not a mesh", None)
@@ -508,7 +528,7 @@ def test_real_scan(vendored, operators):
 def main():
     vendored, operators = install_addon()
     failed = []
-    for test in (test_bad_input, test_synthetic_sherd, test_base_sherd, test_declined_sherd, test_real_scan):
+    for test in (test_choices_are_the_library_names, test_bad_input, test_synthetic_sherd, test_base_sherd, test_declined_sherd, test_real_scan):
         print(f"{test.__name__}")
         try:
             test(vendored, operators)

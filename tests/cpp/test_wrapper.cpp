@@ -110,8 +110,24 @@ void test_files() {
 
 }  // namespace
 
+// The wrapper's vocabulary listing is the C ABI's, and a menu indexed by value (as
+// MeshLab's enum parameters are) holds each name at its constant.
+void test_vocabulary() {
+    std::vector<sherd::VocabularyEntry> criteria = sherd::vocabulary(SHERD_VOCABULARY_CRITERION);
+    CHECK(criteria.size() == 5);
+    CHECK(criteria.front().name == "auto" && criteria.front().value == SHERD_CRITERION_AUTO);
+    std::vector<std::string> by_value = sherd::names_by_value(SHERD_VOCABULARY_CRITERION);
+    CHECK(by_value.size() == criteria.size());
+    CHECK(by_value[SHERD_CRITERION_CIRCLES] == "circles" && by_value[SHERD_CRITERION_AUTO] == "auto");
+    for (const sherd::VocabularyEntry& entry : criteria) CHECK(by_value.at(entry.value) == entry.name);
+    // Styles are bits: no menu indexed by value can hold them.
+    expect_error([] { sherd::names_by_value(SHERD_VOCABULARY_STYLE); }, SHERD_STATUS_INVALID_ARGUMENT, "without a gap");
+    expect_error([] { sherd::vocabulary(99); }, SHERD_STATUS_INVALID_ARGUMENT, "SHERD_VOCABULARY_*");
+}
+
 int main() {
     test_round_trip_and_ownership();
+    test_vocabulary();
     test_transform();
     test_errors();
     test_files();

@@ -288,6 +288,20 @@ def test_draw_takes_every_layout_choice_under_the_librarys_names(rim_sherd, tmp_
     assert b">height " not in drawings["default"] and b">wall " not in drawings["default"]
 
 
+def test_check_boxes_are_the_librarys_names(rim_sherd, tmp_path):
+    """The drawing's check boxes are named style_<name> and annotations_<name> after every
+    name the library lists (sherd_vocabulary_entry): each is a parameter of the filter."""
+    scan, _ = rim_sherd
+    ms = load(scan)
+    boxes = {f"style_{name}": name == "linear" for name in sherd.vocabulary.names(sherd.Vocabulary.STYLE)}
+    boxes.update({f"annotations_{name}": False for name in sherd.vocabulary.names(sherd.Vocabulary.ANNOTATION)})
+    assert len(boxes) == 9, boxes
+    target = tmp_path / "boxes.svg"
+    ms.apply_filter("sherd_draw", file=str(target), format=sherd.vocabulary.mapping(sherd.Vocabulary.FORMAT)["svg"],
+                    dpi=40.0, **boxes)
+    assert target.read_bytes().startswith(b"<")
+
+
 @pytest.mark.parametrize("name, parameters, message", [
     ("sherd_draw", dict(file="drawing.pdf", format=0), "ends in .pdf but the format is SVG"),
     ("sherd_draw", dict(dpi=1.0), "dpi"),

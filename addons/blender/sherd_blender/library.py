@@ -30,3 +30,21 @@ def sherd():
 def is_sherd_error(error):
     """True for an exception raised by the sherd library (``sherd.SherdError``)."""
     return _module is not None and isinstance(error, _module.SherdError)
+
+
+def vocabulary_items(vocabulary, *defaults):
+    """Blender enum items ``(name, label, description)`` for one of the library's
+    vocabularies (``"CRITERION"``: ``sherd.Vocabulary.CRITERION``), in the library's
+    order, the names and descriptions the library's. Without the library the items are
+    the ``defaults`` alone, so that the add-on still registers and says why it cannot work."""
+    try:
+        module = sherd()
+        entries = module.vocabulary.entries(module.Vocabulary[vocabulary])
+    except LibraryMissingError as error:
+        return [(name, label(name), str(error)) for name in defaults]
+    return [(name, label(name), description) for name, _, description in entries]
+
+
+def label(name):
+    """How Blender shows a library name: ``mean_of_best`` as "Mean of best"."""
+    return name.replace("_", " ").capitalize()

@@ -12,7 +12,7 @@ import bpy
 import numpy as np
 from mathutils import Matrix, Vector
 
-from .library import LibraryMissingError, is_sherd_error, sherd
+from .library import LibraryMissingError, is_sherd_error, sherd, vocabulary_items
 
 AXIS_POINT = "sherd_axis_point"
 AXIS_DIRECTION = "sherd_axis_direction"
@@ -39,40 +39,22 @@ MEASUREMENT_KEYS = {
     "axis_distance_interval_mm": "sherd_axis_distance_interval_mm",
 }
 
-CRITERION_ITEMS = [
-    ("auto", "Auto", "Let the library choose the criterion"),
-    ("circles", "Circles", "Concentric circles fitted to horizontal sections"),
-    ("pareto", "Pareto", "Pareto front of centre dispersion and circle residual"),
-    ("profile", "Profile", "Agreement of profile sections"),
-    ("tangent", "Tangent", "Tangent planes"),
-]
-SURFACE_ITEMS = [
-    ("both", "Both", "Inner and outer surface"),
-    ("outer", "Outer", "Outer surface only"),
-    ("inner", "Inner", "Inner surface only"),
-]
-PARETO_CHOICE_ITEMS = [
-    ("knee", "Knee", "The front's solution with the smallest product of the two costs"),
-    ("centres", "Centres", "The best centre dispersion (Eq. 3 alone)"),
-    ("residuals", "Residuals", "The best circle residual (Eq. 4 alone)"),
-    ("mean_of_best", "Mean of best", "The mean of the best solutions (the original tool takes 2)"),
-]
-EDGE_ITEMS = [
-    ("detect", "Detect", "The rim or base whose extremes are level"),
-    ("rim", "Rim", "The tangent plane on the rim's highest points"),
-    ("base", "Base", "The tangent plane on the base's lowest points"),
-]
-CIRCLE_FIT_ITEMS = [
-    ("taubin", "Taubin", "Algebraic fit, nearly unbiased on short arcs"),
-    ("geometric", "Geometric", "Least-squares distances, from Taubin's circle"),
-    ("pratt", "Pratt", "Algebraic fit"),
-    ("kasa", "Kasa", "Algebraic fit, biased towards small circles on short arcs"),
-]
-PROFILE_FORM_ITEMS = [
-    ("spline", "Spline", "Eq. 6 as a cubic spline r(z) per skin"),
-    ("polynomial", "Polynomial", "Eq. 6: a polynomial r(z) per skin"),
-    ("reference", "Reference", "Eq. 5: distance to the longest vertical section"),
-]
+#: The defaults of the choices below (the library's defaults), by the library's names.
+DEFAULT_CRITERION = "auto"
+DEFAULT_SURFACE = "both"
+DEFAULT_PARETO_CHOICE = "knee"
+DEFAULT_EDGE = "detect"
+DEFAULT_CIRCLE_FIT = "taubin"
+DEFAULT_PROFILE_FORM = "spline"
+
+#: The choices of the refinement: the library's names and descriptions, read when the
+#: add-on loads.
+CRITERION_ITEMS = vocabulary_items("CRITERION", DEFAULT_CRITERION)
+SURFACE_ITEMS = vocabulary_items("SURFACE", DEFAULT_SURFACE)
+PARETO_CHOICE_ITEMS = vocabulary_items("PARETO_CHOICE", DEFAULT_PARETO_CHOICE)
+EDGE_ITEMS = vocabulary_items("EDGE", DEFAULT_EDGE)
+CIRCLE_FIT_ITEMS = vocabulary_items("CIRCLE_FIT", DEFAULT_CIRCLE_FIT)
+PROFILE_FORM_ITEMS = vocabulary_items("PROFILE_METHOD", DEFAULT_PROFILE_FORM)
 
 
 class InputError(Exception):
@@ -296,16 +278,16 @@ class SHERD_OT_refine(SherdOperator, bpy.types.Operator):
     bl_idname = "sherd.refine"
     bl_label = "Refine"
 
-    criterion: bpy.props.EnumProperty(name="Criterion", items=CRITERION_ITEMS, default="auto")
-    surface: bpy.props.EnumProperty(name="Surface", items=SURFACE_ITEMS, default="both")
-    pareto_choice: bpy.props.EnumProperty(name="Pareto solution", items=PARETO_CHOICE_ITEMS, default="knee")
+    criterion: bpy.props.EnumProperty(name="Criterion", items=CRITERION_ITEMS, default=DEFAULT_CRITERION)
+    surface: bpy.props.EnumProperty(name="Surface", items=SURFACE_ITEMS, default=DEFAULT_SURFACE)
+    pareto_choice: bpy.props.EnumProperty(name="Pareto solution", items=PARETO_CHOICE_ITEMS, default=DEFAULT_PARETO_CHOICE)
     pareto_mean_count: bpy.props.IntProperty(name="Best averaged", default=2, min=1, max=100)
-    edge: bpy.props.EnumProperty(name="Edge", items=EDGE_ITEMS, default="detect")
+    edge: bpy.props.EnumProperty(name="Edge", items=EDGE_ITEMS, default=DEFAULT_EDGE)
     tangent_tolerance_mm: bpy.props.FloatProperty(name="Epsilon (mm)", default=3.0, min=0.01, max=100.0)
     pareto_min_points: bpy.props.IntProperty(name="Fewest points", default=10, min=3, max=100000)
     pareto_min_arc_deg: bpy.props.FloatProperty(name="Smallest arc (deg)", default=3.0, min=0.0, max=360.0)
-    circle_fit: bpy.props.EnumProperty(name="Circle fit", items=CIRCLE_FIT_ITEMS, default="taubin")
-    profile_form: bpy.props.EnumProperty(name="Profile", items=PROFILE_FORM_ITEMS, default="spline")
+    circle_fit: bpy.props.EnumProperty(name="Circle fit", items=CIRCLE_FIT_ITEMS, default=DEFAULT_CIRCLE_FIT)
+    profile_form: bpy.props.EnumProperty(name="Profile", items=PROFILE_FORM_ITEMS, default=DEFAULT_PROFILE_FORM)
     profile_knot_spacing_mm: bpy.props.FloatProperty(name="Knots (mm)", default=1.5, min=0.1, max=1000.0)
     profile_degree: bpy.props.IntProperty(name="Degree", default=6, min=1, max=20)
     profile_sections: bpy.props.IntProperty(name="Vertical sections", default=12, min=2, max=1000)
@@ -444,34 +426,18 @@ class SHERD_OT_add_axis_empty(SherdOperator, bpy.types.Operator):
         return {'FINISHED'}
 
 
-STYLE_ITEMS = [
-    ("linear", "Linear", "Outline and profile lines only"),
-    ("colour", "Colour", "The scan's colours"),
-    ("light", "Light", "Shading by a light from the upper left"),
-    ("occlusion", "Occlusion", "Ambient occlusion shading"),
-    ("stipple", "Stipple", "Stippled shading"),
-    ("regularity", "Regularity", "Deviation from a regular vessel as colour"),
-]
+#: The library's default styles (``sherd draw``'s), placement and section fill.
+DEFAULT_STYLES = {"light", "occlusion"}
+DEFAULT_PLACEMENT = "beside"
+DEFAULT_SECTION_FILL = "black"
 
-
-#: Where the views stand (the library's placement; Python's and the C ABI's names).
-PLACEMENT_ITEMS = [
-    ("beside", "Beside the axis", "The views beside the axis, whatever the true radius"),
-    ("true_distance", "True distance", "The fragment at its true distance from the axis"),
-]
-
-#: How the section is filled (section_fill).
-SECTION_FILL_ITEMS = [
-    ("black", "Black", "Solid black, the usual convention for pottery"),
-    ("hatched", "Hatched", "45-degree hatching"),
-]
-
-#: The measurements written under the drawing (annotations; ``sherd draw --annotations``).
-ANNOTATION_ITEMS = [
-    ("height", "Height", "The preserved height along the axis"),
-    ("wall_thickness", "Wall thickness", "The median wall thickness"),
-    ("capacity", "Capacity", "The capacity, where the profile runs from base to rim"),
-]
+#: The drawing's choices: the library's names and descriptions. Where the views stand
+#: (placement), how the section is filled (section_fill), the measurements written under
+#: the drawing (annotations; ``sherd draw --annotations``).
+STYLE_ITEMS = vocabulary_items("STYLE", *sorted(DEFAULT_STYLES))
+PLACEMENT_ITEMS = vocabulary_items("PLACEMENT", DEFAULT_PLACEMENT)
+SECTION_FILL_ITEMS = vocabulary_items("SECTION_FILL", DEFAULT_SECTION_FILL)
+ANNOTATION_ITEMS = vocabulary_items("ANNOTATION")
 
 #: The drawing's layout choices, as the Draw operator and the panel's settings name them
 #: (the panel's carry a "drawing_" prefix).
@@ -499,11 +465,11 @@ class SHERD_OT_draw(SherdOperator, bpy.types.Operator):
 
     filepath: bpy.props.StringProperty(name="File", subtype='FILE_PATH', default="//sherd.svg")
     style: bpy.props.EnumProperty(name="Style", items=STYLE_ITEMS, options={'ENUM_FLAG'},
-                                  default={"light", "occlusion"})
+                                  default=DEFAULT_STYLES)
     scale_denominator: bpy.props.IntProperty(name="Scale 1:", default=1, min=1, max=100)
     dpi: bpy.props.FloatProperty(name="DPI", default=300.0, min=10.0, max=2400.0)
-    placement: bpy.props.EnumProperty(name="Placement", items=PLACEMENT_ITEMS, default="beside")
-    section_fill: bpy.props.EnumProperty(name="Section fill", items=SECTION_FILL_ITEMS, default="black")
+    placement: bpy.props.EnumProperty(name="Placement", items=PLACEMENT_ITEMS, default=DEFAULT_PLACEMENT)
+    section_fill: bpy.props.EnumProperty(name="Section fill", items=SECTION_FILL_ITEMS, default=DEFAULT_SECTION_FILL)
     interior_view: bpy.props.BoolProperty(name="Interior view", default=True,
                                           description="Draw the interior view between the section and the axis")
     prolongation: bpy.props.BoolProperty(name="Prolongation", default=True,
@@ -574,11 +540,8 @@ class SHERD_OT_save_pareto_plot(SherdOperator, bpy.types.Operator):
         return {'FINISHED'}
 
 
-REGULARITY_ITEMS = [
-    ("ideal_vessel", "Ideal vessel", "Signed distance to the vessel revolved from the profile: blue inside the ideal "
-                                     "wall, white on it, red outside"),
-    ("axis_distance", "Axis distance", "Distance of each vertex to the axis: blue near, red far"),
-]
+DEFAULT_REGULARITY = "ideal_vessel"
+REGULARITY_ITEMS = vocabulary_items("REGULARITY", DEFAULT_REGULARITY)
 #: The colour attribute the regularity map writes, and the float attribute of its values.
 REGULARITY_COLORS = "Sherd regularity"
 REGULARITY_VALUES = "sherd_regularity_mm"
@@ -625,7 +588,7 @@ class SHERD_OT_regularity(SherdOperator, bpy.types.Operator):
     bl_idname = "sherd.regularity"
     bl_label = "Regularity colours"
 
-    kind: bpy.props.EnumProperty(name="Map", items=REGULARITY_ITEMS, default="ideal_vessel")
+    kind: bpy.props.EnumProperty(name="Map", items=REGULARITY_ITEMS, default=DEFAULT_REGULARITY)
 
     def run(self, context):
         obj, _, _, regularity = with_stored_axis(context, lambda mesh, axis: sherd().regularity(mesh, axis, self.kind))

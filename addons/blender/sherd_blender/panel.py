@@ -10,27 +10,27 @@ from . import operators
 class SherdSettings(bpy.types.PropertyGroup):
     """The panel's choices, kept with the scene."""
 
-    criterion: bpy.props.EnumProperty(name="Criterion", items=operators.CRITERION_ITEMS, default="auto")
-    surface: bpy.props.EnumProperty(name="Surface", items=operators.SURFACE_ITEMS, default="both")
-    pareto_choice: bpy.props.EnumProperty(name="Solution", items=operators.PARETO_CHOICE_ITEMS, default="knee")
+    criterion: bpy.props.EnumProperty(name="Criterion", items=operators.CRITERION_ITEMS, default=operators.DEFAULT_CRITERION)
+    surface: bpy.props.EnumProperty(name="Surface", items=operators.SURFACE_ITEMS, default=operators.DEFAULT_SURFACE)
+    pareto_choice: bpy.props.EnumProperty(name="Solution", items=operators.PARETO_CHOICE_ITEMS, default=operators.DEFAULT_PARETO_CHOICE)
     pareto_mean_count: bpy.props.IntProperty(name="Best averaged", default=2, min=1, max=100)
-    edge: bpy.props.EnumProperty(name="Edge", items=operators.EDGE_ITEMS, default="detect")
+    edge: bpy.props.EnumProperty(name="Edge", items=operators.EDGE_ITEMS, default=operators.DEFAULT_EDGE)
     tangent_tolerance_mm: bpy.props.FloatProperty(name="Epsilon (mm)", default=3.0, min=0.01, max=100.0)
     pareto_min_points: bpy.props.IntProperty(name="Fewest points", default=10, min=3, max=100000)
     pareto_min_arc_deg: bpy.props.FloatProperty(name="Smallest arc (deg)", default=3.0, min=0.0, max=360.0)
-    circle_fit: bpy.props.EnumProperty(name="Circle fit", items=operators.CIRCLE_FIT_ITEMS, default="taubin")
-    profile_form: bpy.props.EnumProperty(name="Profile", items=operators.PROFILE_FORM_ITEMS, default="spline")
+    circle_fit: bpy.props.EnumProperty(name="Circle fit", items=operators.CIRCLE_FIT_ITEMS, default=operators.DEFAULT_CIRCLE_FIT)
+    profile_form: bpy.props.EnumProperty(name="Profile", items=operators.PROFILE_FORM_ITEMS, default=operators.DEFAULT_PROFILE_FORM)
     profile_knot_spacing_mm: bpy.props.FloatProperty(name="Knots (mm)", default=1.5, min=0.1, max=1000.0)
     profile_degree: bpy.props.IntProperty(name="Degree", default=6, min=1, max=20)
     profile_sections: bpy.props.IntProperty(name="Vertical sections", default=12, min=2, max=1000)
     drawing_path: bpy.props.StringProperty(name="File", subtype='FILE_PATH', default="//sherd.svg")
     drawing_style: bpy.props.EnumProperty(name="Style", items=operators.STYLE_ITEMS, options={'ENUM_FLAG'},
-                                          default={"light", "occlusion"})
+                                          default=operators.DEFAULT_STYLES)
     drawing_scale_denominator: bpy.props.IntProperty(name="Scale 1:", default=1, min=1, max=100)
     drawing_dpi: bpy.props.FloatProperty(name="DPI", default=300.0, min=10.0, max=2400.0)
-    drawing_placement: bpy.props.EnumProperty(name="Placement", items=operators.PLACEMENT_ITEMS, default="beside")
+    drawing_placement: bpy.props.EnumProperty(name="Placement", items=operators.PLACEMENT_ITEMS, default=operators.DEFAULT_PLACEMENT)
     drawing_section_fill: bpy.props.EnumProperty(name="Section fill", items=operators.SECTION_FILL_ITEMS,
-                                                 default="black")
+                                                 default=operators.DEFAULT_SECTION_FILL)
     drawing_interior_view: bpy.props.BoolProperty(name="Interior view", default=True)
     drawing_prolongation: bpy.props.BoolProperty(name="Prolongation", default=True)
     drawing_annotations: bpy.props.EnumProperty(name="Annotations", items=operators.ANNOTATION_ITEMS,
@@ -40,7 +40,7 @@ class SherdSettings(bpy.types.PropertyGroup):
     drawing_section_angle_rad: bpy.props.FloatProperty(name="Section angle", subtype='ANGLE', default=0.0,
                                                        min=-math.pi, max=math.pi)
     reconstruction_segments: bpy.props.IntProperty(name="Segments", default=180, min=3, max=3600)
-    regularity_kind: bpy.props.EnumProperty(name="Map", items=operators.REGULARITY_ITEMS, default="ideal_vessel")
+    regularity_kind: bpy.props.EnumProperty(name="Map", items=operators.REGULARITY_ITEMS, default=operators.DEFAULT_REGULARITY)
 
 
 #: Points of the Pareto front listed in the panel (all are in the custom property).

@@ -30,6 +30,7 @@ from .mesh import Attribute, Mesh
 from .pipeline import (Analysis, BestGuess, Measurements, Orientation, Refinement, analyse, measure, orient_automatic,
                        orient_from_three_points, points_on_longest_rill, process_file, refine, synthetic_sherd)
 from .reconstruct import Regularity, reconstruct, regularity
+from .vocabulary import RecordStatus, Vocabulary
 
 if lib.sherd_abi_version() != ABI_VERSION:
     raise ImportError(
@@ -45,5 +46,5 @@ __all__ = [
     "ParseError", "SherdError", "SherdIOError", "Status", "export_oriented_ply", "export_profile_csv",
     "export_reconstruction_ply", "Measurements", "measure", "Refinement", "refine",
     "last_error_message", "most_informative_angle", "orient_automatic", "orient_from_three_points", "Orientation", "points_on_longest_rill",
-    "oriented_transform", "profile_csv", "profile_section", "synthetic_sherd",
+    "oriented_transform", "profile_csv", "profile_section", "synthetic_sherd", "RecordStatus", "Vocabulary",
 ]

@@ -82,6 +82,23 @@ _declare("sherd_abi_version", ctypes.c_uint32)
 _declare("sherd_status_name", ctypes.c_char_p, ctypes.c_uint32)
 _declare("sherd_last_error_message", ctypes.c_char_p)
 
+
+class SherdVocabularyEntry(ctypes.Structure):
+    """Mirror of the C struct; ``size`` must be set to its size."""
+
+    _fields_ = [
+        ("size", ctypes.c_size_t),
+        ("name", ctypes.c_char_p),
+        ("value", ctypes.c_uint32),
+        ("description", ctypes.c_char_p),
+    ]
+
+
+_declare("sherd_vocabulary_count", ctypes.c_uint32, ctypes.c_uint32, ctypes.POINTER(ctypes.c_size_t))
+_declare("sherd_vocabulary_entry", ctypes.c_uint32, ctypes.c_uint32, ctypes.c_size_t,
+         ctypes.POINTER(SherdVocabularyEntry))
+_declare("sherd_vocabulary_value", ctypes.c_uint32, ctypes.c_uint32, ctypes.c_char_p, ctypes.POINTER(ctypes.c_uint32))
+
 _declare("sherd_mesh_from_arrays", Status, c_double_p, ctypes.c_size_t, c_uint32_p, ctypes.c_size_t,
          ctypes.POINTER(SherdMesh_p))
 _declare("sherd_mesh_from_arrays_f32", Status, c_float_p, ctypes.c_size_t, c_uint32_p, ctypes.c_size_t,

@@ -7,32 +7,37 @@ import os
 from . import _library as c
 from .errors import InvalidArgumentError, Status, check
 from .handle import Handle
-from .options import Options, enum_value, take_buffer
+from .options import Options, take_buffer
+from .vocabulary import Vocabulary, mapping, value_of
 
-STYLES = {"linear": 1, "colour": 2, "color": 2, "light": 4, "occlusion": 8, "stipple": 16, "regularity": 32}
-FORMATS = {"svg": 0, "eps": 1, "pdf": 2, "png": 3}
-FILLS = {"black": 0, "hatched": 1}
-PLACEMENTS = {"beside": 0, "true_distance": 1, "true-distance": 1}
-REGULARITY = {"axis_distance": 0, "ideal_vessel": 1, "axis-distance": 0, "ideal-vessel": 1}
-#: The measurements under the drawing (SHERD_ANNOTATION_* bits); all and none stand alone.
-ANNOTATIONS = {"height": 1, "wall_thickness": 2, "wall-thickness": 2, "capacity": 4, "all": 7, "none": 0}
+#: ``{name: value}`` of each vocabulary of the drawing, as the library names them.
+STYLES = mapping(Vocabulary.STYLE)
+FORMATS = mapping(Vocabulary.FORMAT)
+FILLS = mapping(Vocabulary.SECTION_FILL)
+PLACEMENTS = mapping(Vocabulary.PLACEMENT)
+REGULARITY = mapping(Vocabulary.REGULARITY)
+ANNOTATIONS = mapping(Vocabulary.ANNOTATION)
+#: The words that stand alone for every annotation and for none (``sherd draw --annotations``).
+_ALL_ANNOTATIONS, _NO_ANNOTATION = "all", "none"
 
 
-def _bits(names, value, what):
-    """The or of the bits of a list or comma-separated string of names; an int as it is
-    (the C ABI checks it)."""
+def _bits(vocabulary, value, what, words=None):
+    """The or of the bits of a list or comma-separated string of names (``words`` maps
+    extra words to their bits); an int as it is (the C ABI checks it)."""
+    words = words or {}
     if isinstance(value, str):
         value = [name.strip() for name in value.split(",") if name.strip()]
     if isinstance(value, (list, tuple, set, frozenset)):
         bits = 0
         for name in value:
-            bits |= enum_value(names, name, what)
+            known = words.get(str(name).lower())
+            bits |= known if known is not None else value_of(vocabulary, name, what)
         return bits
     return int(value)
 
 
 def _styles(value):
-    return _bits(STYLES, value, "style")
+    return _bits(Vocabulary.STYLE, value, "style")
 
 
 def _annotations(value):
@@ -43,10 +48,13 @@ def _annotations(value):
             raise InvalidArgumentError(Status.INVALID_ARGUMENT, "no annotation given; say \"none\" for none")
         value = [name.strip() for name in value.split(",") if name.strip()]
     if isinstance(value, (list, tuple, set, frozenset)) and len(value) > 1 \
-            and {str(name).lower() for name in value} & {"all", "none"}:
+            and {str(name).lower() for name in value} & {_ALL_ANNOTATIONS, _NO_ANNOTATION}:
         raise InvalidArgumentError(Status.INVALID_ARGUMENT,
                                    f"annotations {list(value)}: all and none cannot be combined with others")
-    return _bits(ANNOTATIONS, value, "annotation")
+    every = 0
+    for bit in ANNOTATIONS.values():
+        every |= bit
+    return _bits(Vocabulary.ANNOTATION, value, "annotation", {_ALL_ANNOTATIONS: every, _NO_ANNOTATION: 0})
 
 
 class Drawing(Handle):
@@ -71,9 +79,9 @@ class Drawing(Handle):
             "scale_denominator": int,
             "dpi": float,
             "section_angle_rad": float,
-            "section_fill": lambda v: enum_value(FILLS, v, "section fill"),
-            "placement": lambda v: enum_value(PLACEMENTS, v, "placement"),
-            "regularity": lambda v: enum_value(REGULARITY, v, "regularity"),
+            "section_fill": lambda v: value_of(Vocabulary.SECTION_FILL, v, "section fill"),
+            "placement": lambda v: value_of(Vocabulary.PLACEMENT, v, "placement"),
+            "regularity": lambda v: value_of(Vocabulary.REGULARITY, v, "regularity"),
             "title": lambda v: v.encode("utf-8"),
             "interior_view": bool,
             "prolongation": bool,
@@ -92,7 +100,7 @@ class Drawing(Handle):
     def to_bytes(self, format="svg"):
         """The drawing in ``format`` (svg, eps, pdf, png)."""
         buffer = c.SherdBuffer_p()
-        check(c.lib.sherd_drawing_to_buffer(self.handle, enum_value(FORMATS, format, "format"), ctypes.byref(buffer)))
+        check(c.lib.sherd_drawing_to_buffer(self.handle, value_of(Vocabulary.FORMAT, format, "format"), ctypes.byref(buffer)))
         return take_buffer(buffer)
 
     def write(self, path):

@@ -5,21 +5,19 @@ import enum
 from ._library import lib
 
 
-class Status(enum.IntEnum):
-    """``SHERD_STATUS_*`` (tests check these against ``sherd.h``)."""
+def _status_members():
+    """``SHERD_STATUS_*`` as the library names them (``sherd_status_name``), from 0 up to
+    the first value it does not know."""
+    members = {}
+    while True:
+        name = lib.sherd_status_name(len(members)).decode("ascii")
+        if name == "SHERD_STATUS_UNKNOWN":
+            return members
+        members[name.removeprefix("SHERD_STATUS_")] = len(members)
 
-    OK = 0
-    INVALID_ARGUMENT = 1
-    NULL_POINTER = 2
-    BUFFER_TOO_SMALL = 3
-    NOT_AVAILABLE = 4
-    IO = 5
-    PARSE = 6
-    DEGENERATE_GEOMETRY = 7
-    NOT_CONVERGED = 8
-    NEEDS_MANUAL_ORIENTATION = 9
-    PANIC = 10
-    SENSE_UNCERTAIN = 11
+
+#: ``SHERD_STATUS_*``, named by the library (tests check these against ``sherd.h``).
+Status = enum.IntEnum("Status", _status_members(), module=__name__)
 
 
 class SherdError(Exception):

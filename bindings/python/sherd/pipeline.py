@@ -13,14 +13,15 @@ from .axis import Axis, as_pointer
 from .errors import Status, check, error_for, last_error_message
 from .mesh import Mesh
 from .options import Options, enum_value, take_buffer, take_json
+from .vocabulary import RecordStatus, Vocabulary, mapping, name_of, value_of
 
 
 SYNTH_KINDS = {"random": 0, "rim": 1, "body": 2, "base": 3, "rim_to_base": 4, "flat_base": 5,
                "near_spherical": 6, "tiny": 7}
-CRITERIA = {"circles": 0, "pareto": 1, "profile": 2, "tangent": 3, "auto": 4}
-SURFACES = {"inner": 0, "outer": 1, "both": 2}
-_CRITERION_NAMES = {v: k for k, v in CRITERIA.items()}
-_SURFACE_NAMES = {v: k for k, v in SURFACES.items()}
+#: ``{name: SHERD_CRITERION_* value}``, as the library names them.
+CRITERIA = mapping(Vocabulary.CRITERION)
+#: ``{name: SHERD_SURFACE_* value}``, as the library names them.
+SURFACES = mapping(Vocabulary.SURFACE)
 
 
 def synthetic_sherd(seed, kind="random", target_faces=0, noise_mm=0.02):
@@ -170,40 +171,40 @@ class Refinement:
     the criterion is Pareto."""
 
 
-PARETO_CHOICES = {"knee": 0, "centres": 1, "residuals": 2, "mean_of_best": 3}
-EDGES = {"detect": 0, "rim": 1, "base": 2}
-PROFILE_METHODS = {"reference": 0, "polynomial": 1, "spline": 2}
-CIRCLE_FITS = {"kasa": 0, "pratt": 1, "taubin": 2, "geometric": 3}
+PARETO_CHOICES = mapping(Vocabulary.PARETO_CHOICE)
+EDGES = mapping(Vocabulary.EDGE)
+PROFILE_METHODS = mapping(Vocabulary.PROFILE_METHOD)
+CIRCLE_FITS = mapping(Vocabulary.CIRCLE_FIT)
 
 
 def _pareto_choice(value):
     """"knee", "centres", "residuals", or ("mean_of_best", n): the C setter's two arguments."""
     if isinstance(value, (tuple, list)):
         name, count = value
-        return enum_value(PARETO_CHOICES, name, "pareto_choice"), int(count)
-    return enum_value(PARETO_CHOICES, value, "pareto_choice"), 0
+        return value_of(Vocabulary.PARETO_CHOICE, name, "pareto_choice"), int(count)
+    return value_of(Vocabulary.PARETO_CHOICE, value, "pareto_choice"), 0
 
 
 def _profile_method(value):
     """("reference", vertical sections), ("polynomial", degree) or ("spline", knot spacing mm)."""
     name, parameter = value
-    return enum_value(PROFILE_METHODS, name, "profile_method"), float(parameter)
+    return value_of(Vocabulary.PROFILE_METHOD, name, "profile_method"), float(parameter)
 
 
 def _refine_options(criterion="auto", surface="both", section_count=0, search_bound_deg=None, pareto_choice=None,
                     pareto_section_limits=None, tangent_tolerance_mm=None, edge=None, profile_method=None,
                     circle_fit=None):
     setters = {
-        "criterion": lambda v: enum_value(CRITERIA, v, "criterion"),
-        "surface": lambda v: enum_value(SURFACES, v, "surface"),
+        "criterion": lambda v: value_of(Vocabulary.CRITERION, v, "criterion"),
+        "surface": lambda v: value_of(Vocabulary.SURFACE, v, "surface"),
         "section_count": int,
         "search_bound_deg": float,
         "pareto_choice": _pareto_choice,
         "pareto_section_limits": lambda v: (int(v[0]), float(v[1])),
         "tangent_tolerance_mm": float,
-        "edge": lambda v: enum_value(EDGES, v, "edge"),
+        "edge": lambda v: value_of(Vocabulary.EDGE, v, "edge"),
         "profile_method": _profile_method,
-        "circle_fit": lambda v: enum_value(CIRCLE_FITS, v, "circle_fit"),
+        "circle_fit": lambda v: value_of(Vocabulary.CIRCLE_FIT, v, "circle_fit"),
     }
     values = dict(criterion=criterion, surface=surface, section_count=section_count,
                   search_bound_deg=search_bound_deg, pareto_choice=pareto_choice,
@@ -247,8 +248,8 @@ def refine(mesh, axis, *, criterion="auto", surface="both", section_count=0, sea
             svg = c.SherdBuffer_p()
             check(c.lib.sherd_refinement_pareto_plot_svg(handle, ctypes.byref(svg)))
             plot = take_buffer(svg).decode("utf-8")
-        return Refinement(Axis.from_c(refined), _CRITERION_NAMES.get(summary.criterion, str(summary.criterion)),
-                          _SURFACE_NAMES.get(summary.surface, str(summary.surface)), summary.iterations,
+        return Refinement(Axis.from_c(refined), name_of(Vocabulary.CRITERION, summary.criterion),
+                          name_of(Vocabulary.SURFACE, summary.surface), summary.iterations,
                           summary.start_residual_mm, summary.residual_mm, summary.tilt_deg, summary.shift_mm,
                           summary.section_count, front, take_json(report), bool(summary.flagged), plot)
     finally:
@@ -329,7 +330,7 @@ class Analysis:
 
     @property
     def axis_uncertain(self):
-        return self.record.get("status") == "axis_uncertain"
+        return self.record.get("status") == RecordStatus.AXIS_UNCERTAIN.value
 
     @property
     def best_guess(self):

@@ -9,10 +9,9 @@ import numpy as np
 
 from . import _library as c
 from .axis import as_pointer
-from .draw import REGULARITY
 from .errors import check
 from .mesh import Mesh
-from .options import enum_value
+from .vocabulary import Vocabulary, value_of
 
 
 def _angle(angle_rad):
@@ -53,7 +52,7 @@ def regularity(mesh, axis, kind="ideal_vessel", angle_rad=None):
     colors = np.empty((count, 4), dtype=np.uint8)
     value_range = np.empty(2, dtype=np.float64)
     c_axis = axis.to_c()
-    check(c.lib.sherd_regularity(mesh.handle, ctypes.byref(c_axis), enum_value(REGULARITY, kind, "regularity"),
+    check(c.lib.sherd_regularity(mesh.handle, ctypes.byref(c_axis), value_of(Vocabulary.REGULARITY, kind, "regularity"),
                                  _angle(angle_rad), as_pointer(values, ctypes.c_float),
                                  as_pointer(colors, ctypes.c_uint8), count, as_pointer(value_range, ctypes.c_double)))
     return Regularity(kind, values, colors, (float(value_range[0]), float(value_range[1])))

@@ -17,9 +17,11 @@ use clap::Args;
 use rayon::prelude::*;
 
 use sherd::mesh::atomic::{write_atomically, write_bytes_atomically};
-use sherd::pipeline::{self, SherdRecord};
+use sherd::draw::Format;
+use sherd::pipeline::{self, RecordStatus, SherdRecord};
 
-use crate::common::{AnalysisArgs, DrawingArgs, FormatChoice};
+use crate::choices::{Choices, cli_name};
+use crate::common::{AnalysisArgs, DrawingArgs};
 
 /// Scan file extensions a directory walk picks up.
 const SCAN_EXTENSIONS: [&str; 5] = ["ply", "obj", "stl", "xyz", "pts"];
@@ -52,8 +54,8 @@ pub struct BatchArgs {
     #[command(flatten)]
     pub drawing: DrawingArgs,
     /// Format of the drawings.
-    #[arg(long, value_enum, default_value = "svg")]
-    pub format: FormatChoice,
+    #[arg(long, value_parser = Choices::of(|_| None, |format: Format| format), default_value = cli_name(Format::Svg))]
+    pub format: Format,
 }
 
 pub fn run(args: BatchArgs) -> Result<ExitCode, String> {
@@ -78,7 +80,7 @@ pub fn run(args: BatchArgs) -> Result<ExitCode, String> {
         .map_err(|e| format!("cannot start {} jobs: {e}", args.jobs.unwrap_or(0)))?;
     let options = args.analysis.pipeline_options()?;
     let draw_options = args.drawing.draw_options()?;
-    let extension = args.format.extension();
+    let extension = args.format;
     let started = Instant::now();
     pool.install(|| {
         pending.par_iter().for_each(|&i| {
@@ -89,7 +91,7 @@ pub fn run(args: BatchArgs) -> Result<ExitCode, String> {
             let write = write_bytes_atomically(&result_path(&args.output, &names[i]), &json);
             let line = match (&write, record.error.as_deref()) {
                 (Err(e), _) => format!("{}: cannot write its result: {e}", scans[i].display()),
-                (Ok(()), Some(reason)) => format!("{}: error: {reason}", scans[i].display()),
+                (Ok(()), Some(reason)) => format!("{}: {}: {reason}", scans[i].display(), RecordStatus::Error),
                 (Ok(()), None) => format!("{}: {}", scans[i].display(), record.status),
             };
             progress.done(&line);
@@ -111,10 +113,10 @@ pub fn run(args: BatchArgs) -> Result<ExitCode, String> {
         records.len(),
         started.elapsed().as_secs_f64(),
         skipped,
-        records.iter().filter(|r| r.status == pipeline::STATUS_OK).count(),
-        records.iter().filter(|r| r.status == pipeline::STATUS_AXIS_UNCERTAIN).count(),
-        records.iter().filter(|r| r.status == pipeline::STATUS_SENSE_UNCERTAIN).count(),
-        records.iter().filter(|r| r.status == pipeline::STATUS_NEEDS_MANUAL).count(),
+        records.iter().filter(|r| r.status == RecordStatus::Ok).count(),
+        records.iter().filter(|r| r.status == RecordStatus::AxisUncertain).count(),
+        records.iter().filter(|r| r.status == RecordStatus::SenseUncertain).count(),
+        records.iter().filter(|r| r.status == RecordStatus::NeedsManualOrientation).count(),
         failures.len(),
         args.output.display()
     );
@@ -134,7 +136,7 @@ pub fn run(args: BatchArgs) -> Result<ExitCode, String> {
 /// An error row: the report writes its status as `error: <reason>`; every other status
 /// is an answer about the sherd.
 fn is_error_row(record: &SherdRecord) -> bool {
-    record.error.is_some() || record.status.starts_with(pipeline::STATUS_ERROR)
+    record.error.is_some() || record.status == RecordStatus::Error
 }
 
 /// The scan files among `inputs`, folders walked recursively, in a stable order.

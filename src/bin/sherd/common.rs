@@ -5,16 +5,17 @@ use std::path::Path;
 
 use clap::{Args, ValueEnum};
 
+use crate::choices::{Choices, cli_name};
 use sherd::draw::{Annotations, DrawOptions, Placement, RegularityKind, SectionFill, Style};
 use sherd::mesh::fingerprint::ScanFingerprint;
 use sherd::mesh::Point;
 use sherd::orient::{Axis, AxisRecord};
-use sherd::pipeline::PipelineOptions;
+use sherd::pipeline::{PipelineOptions, RecordStatus};
 use sherd::refine::circle_fit::CircleFitMethod;
-use sherd::refine::pareto::{ParetoChoice, ParetoOptions};
-use sherd::refine::profile::ProfileMethod;
-use sherd::refine::tangent::Edge;
-use sherd::refine::{Criterion, RefineOptions, Surface};
+use sherd::refine::pareto::{ParetoChoice, ParetoChoiceKind, ParetoOptions};
+use sherd::refine::profile::{ProfileMethod, ProfileMethodKind};
+use sherd::refine::{Criterion, EdgeChoice, RefineOptions, Surface};
+use sherd::vocabulary::{Vocabulary, or_list};
 
 /// Units of a scan file whose format does not say.
 #[derive(Clone, Copy, Debug, ValueEnum)]
@@ -34,78 +35,114 @@ impl Units {
     }
 }
 
-/// The refinement criterion, or none.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum RefineChoice {
-    /// Tangent plane where a level rim or base is kept; otherwise circles, averaged with the
-    /// profile criterion where the two agree.
-    Auto,
-    Circles,
-    Pareto,
-    Profile,
-    Tangent,
-    /// Keep the pre-orientation.
-    None,
+/// The refinement criterion, or none (`--refine none` keeps the pre-orientation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RefineChoice(pub Option<Criterion>);
+
+impl RefineChoice {
+    /// `--refine`'s values: the library's criteria, then `none`.
+    fn choices() -> Choices<RefineChoice> {
+        Choices::of(criterion_help, |criterion| RefineChoice(Some(criterion))).and(
+            RefineChoice(None),
+            "none",
+            "Keep the pre-orientation",
+        )
+    }
 }
 
-/// The skins a criterion uses.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum SurfaceChoice {
-    Inner,
-    Outer,
-    Both,
+/// The help line of a criterion in `--help`.
+fn criterion_help(criterion: Criterion) -> Option<&'static str> {
+    match criterion {
+        Criterion::Auto => Some(
+            "Tangent plane where a level rim or base is kept; otherwise circles, averaged with the profile criterion where the two agree",
+        ),
+        _ => None,
+    }
 }
 
-/// The circle fit of the Pareto criterion's sections (Chernov).
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum CircleFitChoice {
-    Kasa,
-    Pratt,
-    /// Nearly unbiased on short arcs.
-    Taubin,
-    /// Orthogonal distances, started from Taubin's.
-    Geometric,
+/// The help line of a circle fit in `--help`.
+fn circle_fit_help(fit: CircleFitMethod) -> Option<&'static str> {
+    match fit {
+        CircleFitMethod::Taubin => Some("Nearly unbiased on short arcs"),
+        CircleFitMethod::Geometric => Some("Orthogonal distances, started from Taubin's"),
+        _ => None,
+    }
 }
 
-/// The edge the tangent plane (Eq. 7) rests on.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-pub enum EdgeChoice {
-    /// The one whose extremes are level.
-    Detect,
-    Rim,
-    Base,
+/// The help line of an edge in `--help`.
+fn edge_help(edge: EdgeChoice) -> Option<&'static str> {
+    (edge == EdgeChoice::Detect).then_some("The one whose extremes are level")
+}
+
+/// No help line: the name says it.
+fn no_help<T>(_: T) -> Option<&'static str> {
+    None
+}
+
+/// The library's default Pareto choice as `--pareto-choice` writes it.
+fn pareto_choice_text(choice: ParetoChoice) -> String {
+    match choice {
+        ParetoChoice::Knee => cli_name(ParetoChoiceKind::Knee),
+        ParetoChoice::Centres => cli_name(ParetoChoiceKind::Centres),
+        ParetoChoice::Residuals => cli_name(ParetoChoiceKind::Residuals),
+        ParetoChoice::MeanOfBest(count) => format!("{}:{count}", cli_name(ParetoChoiceKind::MeanOfBest)),
+    }
 }
 
 /// "knee", "centres", "residuals" or "mean-of-best:N" as the Pareto criterion's choice.
 fn parse_pareto_choice(text: &str) -> Result<ParetoChoice, String> {
-    match text {
-        "knee" => Ok(ParetoChoice::Knee),
-        "centres" => Ok(ParetoChoice::Centres),
-        "residuals" => Ok(ParetoChoice::Residuals),
-        _ => match text.strip_prefix("mean-of-best:").map(str::parse::<usize>) {
-            Some(Ok(count)) => ParetoOptions { choice: ParetoChoice::MeanOfBest(count), ..Default::default() }
-                .validated()
-                .map(|options| options.choice)
-                .map_err(|e| format!("{text:?}: {e}")),
-            _ => Err(format!("{text:?} is not knee, centres, residuals or mean-of-best:N (N at least 1)")),
-        },
+    let (name, count) = text.split_once(':').unwrap_or((text, ""));
+    let kind = ParetoChoiceKind::ALL.iter().copied().find(|kind| cli_name(*kind) == name);
+    match (kind, count.parse::<usize>()) {
+        (Some(ParetoChoiceKind::MeanOfBest), Ok(count)) => ParetoOptions { choice: ParetoChoice::MeanOfBest(count), ..Default::default() }
+            .validated()
+            .map(|options| options.choice)
+            .map_err(|e| format!("{text:?}: {e}")),
+        (Some(kind), _) if kind != ParetoChoiceKind::MeanOfBest && !text.contains(':') => Ok(kind.with_count(0)),
+        _ => {
+            let plain: Vec<String> =
+                ParetoChoiceKind::ALL.iter().filter(|kind| **kind != ParetoChoiceKind::MeanOfBest).map(|kind| cli_name(*kind)).collect();
+            Err(format!("{text:?} is not {} or {}:N (N at least 1)", plain.join(", "), cli_name(ParetoChoiceKind::MeanOfBest)))
+        }
     }
 }
 
 /// "reference:N", "polynomial:D" or "spline:MM" as the profile criterion's form.
 fn parse_profile_method(text: &str) -> Result<ProfileMethod, String> {
-    let wrong = || format!("{text:?} is not reference:N (vertical sections), polynomial:D (degree) or spline:MM (knot spacing)");
+    let wrong = || {
+        let forms: Vec<String> = ProfileMethodKind::ALL.iter().map(|kind| profile_method_form(*kind)).collect();
+        format!("{text:?} is not {}", or_list(&forms))
+    };
     let (name, parameter) = text.split_once(':').ok_or_else(wrong)?;
     let whole = || parameter.parse::<usize>().map_err(|_| format!("{text:?}: {parameter:?} is not a whole number"));
-    let method = match name {
-        "reference" => ProfileMethod::ReferenceProfile { vertical_sections: whole()? },
-        "polynomial" => ProfileMethod::Polynomial { degree: whole()? },
-        "spline" => ProfileMethod::Spline {
+    let kind = ProfileMethodKind::ALL.iter().copied().find(|kind| cli_name(*kind) == name).ok_or_else(wrong)?;
+    let method = match kind {
+        ProfileMethodKind::Reference => ProfileMethod::ReferenceProfile { vertical_sections: whole()? },
+        ProfileMethodKind::Polynomial => ProfileMethod::Polynomial { degree: whole()? },
+        ProfileMethodKind::Spline => ProfileMethod::Spline {
             knot_spacing_mm: parameter.parse().map_err(|_| format!("{text:?}: {parameter:?} is not a number of millimetres"))?,
         },
-        _ => return Err(wrong()),
     };
     method.validated().map_err(|e| format!("{text:?}: {e}"))
+}
+
+/// How `--profile-method` writes a form and its parameter: "reference:N (vertical sections)".
+fn profile_method_form(kind: ProfileMethodKind) -> String {
+    let parameter = match kind {
+        ProfileMethodKind::Reference => "N (vertical sections)",
+        ProfileMethodKind::Polynomial => "D (degree)",
+        ProfileMethodKind::Spline => "MM (knot spacing)",
+    };
+    format!("{}:{parameter}", cli_name(kind))
+}
+
+/// The library's default profile form as `--profile-method` writes it ("spline:1.5").
+fn profile_method_text(method: ProfileMethod) -> String {
+    match method {
+        ProfileMethod::ReferenceProfile { vertical_sections } => format!("{}:{vertical_sections}", cli_name(ProfileMethodKind::Reference)),
+        ProfileMethod::Polynomial { degree } => format!("{}:{degree}", cli_name(ProfileMethodKind::Polynomial)),
+        ProfileMethod::Spline { knot_spacing_mm } => format!("{}:{knot_spacing_mm}", cli_name(ProfileMethodKind::Spline)),
+    }
 }
 
 /// "POINTS,DEG" as the Pareto criterion's section limits (fewest points, smallest arc).
@@ -135,15 +172,15 @@ pub struct AnalysisArgs {
     #[arg(long, value_name = "x,y,z;x,y,z;x,y,z")]
     pub manual: Option<String>,
     /// Refinement criterion after pre-orientation.
-    #[arg(long, value_enum, default_value = "auto")]
+    #[arg(long, value_parser = RefineChoice::choices(), default_value = cli_name(Criterion::default()))]
     pub refine: RefineChoice,
     /// Skins the refinement uses.
-    #[arg(long, value_enum, default_value = "both")]
-    pub surface: SurfaceChoice,
+    #[arg(long, value_parser = Choices::of(no_help, |surface: Surface| surface), default_value = cli_name(Surface::default()))]
+    pub surface: Surface,
     /// Which solution of the Pareto front becomes the axis (--refine pareto): knee (the
     /// smallest product of the two costs), centres (Eq. 3 alone), residuals (Eq. 4 alone),
     /// or mean-of-best:N (the mean of the N best; the original tool takes 2).
-    #[arg(long, value_name = "CHOICE", default_value = "knee", value_parser = parse_pareto_choice)]
+    #[arg(long, value_name = "CHOICE", default_value = pareto_choice_text(ParetoOptions::default().choice), value_parser = parse_pareto_choice)]
     pub pareto_choice: ParetoChoice,
     /// The tangent plane's tolerance epsilon (Eq. 7), mm: a vertical section whose extreme
     /// lies farther below the rim's highest point (above the base's lowest) is taken for
@@ -151,16 +188,16 @@ pub struct AnalysisArgs {
     #[arg(long, value_name = "MM", default_value = "3", value_parser = parse_positive_mm)]
     pub tangent_tolerance: f64,
     /// The edge the tangent plane rests on (--refine tangent or auto).
-    #[arg(long, value_enum, default_value = "detect")]
+    #[arg(long, value_parser = Choices::of(edge_help, |edge: EdgeChoice| edge), default_value = cli_name(EdgeChoice::default()))]
     pub edge: EdgeChoice,
     /// The profile criterion's form (--refine profile): reference:N (Eq. 5, N vertical
     /// sections), polynomial:D (Eq. 6, degree D) or spline:MM (Eq. 6 as a cubic spline,
     /// knots MM apart).
-    #[arg(long, value_name = "FORM", default_value = "spline:1.5", value_parser = parse_profile_method)]
+    #[arg(long, value_name = "FORM", default_value = profile_method_text(ProfileMethod::default()), value_parser = parse_profile_method)]
     pub profile_method: ProfileMethod,
     /// The circle fit of each horizontal section in the Pareto criterion.
-    #[arg(long, value_enum, default_value = "taubin")]
-    pub circle_fit: CircleFitChoice,
+    #[arg(long, value_parser = Choices::of(circle_fit_help, |fit: CircleFitMethod| fit), default_value = cli_name(ParetoOptions::default().circle_fit))]
+    pub circle_fit: CircleFitMethod,
     /// The Pareto criterion's limits per horizontal section: fewer points or a smaller arc
     /// (degrees) and the section is left out.
     #[arg(long, value_name = "POINTS,DEG", default_value = "10,3", value_parser = parse_section_limits)]
@@ -181,44 +218,21 @@ impl AnalysisArgs {
         if let Some(text) = &self.manual {
             options.manual_points = Some(parse_three_points(text)?);
         }
-        let criterion = match self.refine {
-            RefineChoice::Auto => Some(Criterion::Auto),
-            RefineChoice::Circles => Some(Criterion::Circles),
-            RefineChoice::Pareto => Some(Criterion::Pareto),
-            RefineChoice::Profile => Some(Criterion::Profile),
-            RefineChoice::Tangent => Some(Criterion::Tangent),
-            RefineChoice::None => None,
-        };
-        let surface = match self.surface {
-            SurfaceChoice::Inner => Surface::Inner,
-            SurfaceChoice::Outer => Surface::Outer,
-            SurfaceChoice::Both => Surface::Both,
-        };
-        let edge = match self.edge {
-            EdgeChoice::Detect => None,
-            EdgeChoice::Rim => Some(Edge::Rim),
-            EdgeChoice::Base => Some(Edge::Base),
-        };
-        options.refine = criterion.map(|criterion| {
+        options.refine = self.refine.0.map(|criterion| {
             let defaults = RefineOptions::default();
             RefineOptions {
                 criterion,
-                surface,
+                surface: self.surface,
                 pareto: ParetoOptions {
                     choice: self.pareto_choice,
-                    circle_fit: match self.circle_fit {
-                        CircleFitChoice::Kasa => CircleFitMethod::Kasa,
-                        CircleFitChoice::Pratt => CircleFitMethod::Pratt,
-                        CircleFitChoice::Taubin => CircleFitMethod::Taubin,
-                        CircleFitChoice::Geometric => CircleFitMethod::Geometric,
-                    },
+                    circle_fit: self.circle_fit,
                     min_section_points: self.pareto_section_limits.0,
                     min_sector_angle_deg: self.pareto_section_limits.1,
                     ..defaults.pareto.clone()
                 },
                 profile_method: self.profile_method,
                 tangent_tolerance_mm: self.tangent_tolerance,
-                edge,
+                edge: self.edge.edge(),
                 ..defaults
             }
         });
@@ -317,34 +331,28 @@ fn check_axis_fits(axis_file: &Path, scan_file: &Path, read: &AxisFile, mesh: &s
     Ok(())
 }
 
-/// Where the views stand relative to the axis (the library's `Placement`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum PlacementChoice {
-    /// Beside the axis, whatever the true radius (the paper's Fig. 4:a).
-    Beside,
-    /// At the fragment's true distance from the axis (Fig. 4:b).
-    #[value(alias = "true_distance")]
-    TrueDistance,
+/// The help line of a placement in `--help`.
+fn placement_help(placement: Placement) -> Option<&'static str> {
+    Some(match placement {
+        Placement::Beside => "Beside the axis, whatever the true radius (the paper's Fig. 4:a)",
+        Placement::TrueDistance => "At the fragment's true distance from the axis (Fig. 4:b)",
+    })
 }
 
-/// How the section is filled (the library's `SectionFill`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum SectionFillChoice {
-    /// Solid black, the usual convention for pottery.
-    Black,
-    /// 45-degree hatching.
-    Hatched,
+/// The help line of a section fill in `--help`.
+fn section_fill_help(fill: SectionFill) -> Option<&'static str> {
+    Some(match fill {
+        SectionFill::Black => "Solid black, the usual convention for pottery",
+        SectionFill::Hatched => "45-degree hatching",
+    })
 }
 
-/// The map the regularity style shows (the library's `RegularityKind`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum RegularityChoice {
-    /// Distance of each point to the axis.
-    #[value(alias = "axis_distance")]
-    AxisDistance,
-    /// Distance to the ideal vessel revolved from the section.
-    #[value(alias = "ideal_vessel")]
-    IdealVessel,
+/// The help line of a regularity map in `--help`.
+fn regularity_help(kind: RegularityKind) -> Option<&'static str> {
+    Some(match kind {
+        RegularityKind::AxisDistance => "Distance of each point to the axis",
+        RegularityKind::IdealVessel => "Distance to the ideal vessel revolved from the section",
+    })
 }
 
 /// A section angle in degrees: a finite number.
@@ -362,7 +370,7 @@ fn parse_degrees(text: &str) -> Result<f64, String> {
 pub struct DrawingArgs {
     /// Rendering styles, combinable: linear, colour, light, occlusion, stipple, regularity.
     /// The default is the library's, the C ABI's, Python's and the add-ons'.
-    #[arg(long, default_value = Style::DEFAULT_NAMES)]
+    #[arg(long, default_value = Style::DEFAULT.to_string())]
     pub style: String,
     /// Publication scale: 1 for 1:1, 2 for 1:2, 3 for 1:3... (1 to 100).
     #[arg(long, default_value_t = 1)]
@@ -372,11 +380,11 @@ pub struct DrawingArgs {
     pub dpi: f64,
     /// Where the views stand: beside the axis, or turned about it to the fragment's true
     /// distance.
-    #[arg(long, value_enum, default_value = "beside")]
-    pub placement: PlacementChoice,
+    #[arg(long, value_parser = Choices::of(placement_help, |placement: Placement| placement), default_value = cli_name(DrawOptions::default().placement))]
+    pub placement: Placement,
     /// How the section is filled.
-    #[arg(long, value_enum, default_value = "black")]
-    pub section_fill: SectionFillChoice,
+    #[arg(long, value_parser = Choices::of(section_fill_help, |fill: SectionFill| fill), default_value = cli_name(DrawOptions::default().section_fill))]
+    pub section_fill: SectionFill,
     /// Draw the interior view between the section and the axis (true or false).
     #[arg(long, value_name = "BOOL", default_value_t = true, action = clap::ArgAction::Set)]
     pub interior_view: bool,
@@ -396,8 +404,8 @@ pub struct DrawingArgs {
     #[arg(long, value_name = "DEG", allow_negative_numbers = true, value_parser = parse_degrees)]
     pub section_angle: Option<f64>,
     /// The map the regularity style shows.
-    #[arg(long, value_enum, default_value = "ideal-vessel")]
-    pub regularity: RegularityChoice,
+    #[arg(long, value_parser = Choices::of(regularity_help, |kind: RegularityKind| kind), default_value = cli_name(DrawOptions::default().regularity))]
+    pub regularity: RegularityKind,
 }
 
 impl DrawingArgs {
@@ -409,48 +417,18 @@ impl DrawingArgs {
             style,
             scale_denominator: self.scale,
             dpi: self.dpi,
-            placement: match self.placement {
-                PlacementChoice::Beside => Placement::Beside,
-                PlacementChoice::TrueDistance => Placement::TrueDistance,
-            },
-            section_fill: match self.section_fill {
-                SectionFillChoice::Black => SectionFill::Black,
-                SectionFillChoice::Hatched => SectionFill::Hatched,
-            },
+            placement: self.placement,
+            section_fill: self.section_fill,
             interior_view: self.interior_view,
             prolongation: self.prolongation,
             annotations,
             title: self.title.clone(),
             section_angle_rad: self.section_angle.map(f64::to_radians),
-            regularity: match self.regularity {
-                RegularityChoice::AxisDistance => RegularityKind::AxisDistance,
-                RegularityChoice::IdealVessel => RegularityKind::IdealVessel,
-            },
+            regularity: self.regularity,
             ..Default::default()
         };
         options.check().map_err(|e| e.to_string())?;
         Ok(options)
-    }
-}
-
-/// Drawing format of `batch` (`draw` takes it from the output's extension).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum FormatChoice {
-    Svg,
-    Eps,
-    Pdf,
-    Png,
-}
-
-impl FormatChoice {
-    /// The file extension of this format.
-    pub fn extension(self) -> &'static str {
-        match self {
-            FormatChoice::Svg => "svg",
-            FormatChoice::Eps => "eps",
-            FormatChoice::Pdf => "pdf",
-            FormatChoice::Png => "png",
-        }
     }
 }
 
@@ -562,7 +540,7 @@ impl Oriented {
             Some(record) => serde_json::to_value(record).expect("a record always serialises"),
             None => {
                 let in_scan_units = Axis { point: Point::from(self.axis.point.coords / self.millimetres_per_unit), ..self.axis };
-                serde_json::json!({ "file": scan.display().to_string(), "status": "ok", "axis": in_scan_units.record() })
+                serde_json::json!({ "file": scan.display().to_string(), "status": RecordStatus::Ok, "axis": in_scan_units.record() })
             }
         };
         value["axis_file"] = serde_json::json!(axis_file.map(|path| path.display().to_string()));
@@ -606,7 +584,7 @@ pub fn analyse_or_read_axis(scan: &Path, axis_file: Option<&Path>, analysis: &An
                 sherd::orient::Verdict::Oriented => {}
             }
             let record = sherd::pipeline::SherdRecord::from_analysis(scan.display().to_string(), &result);
-            if record.status == sherd::pipeline::STATUS_AXIS_UNCERTAIN {
+            if record.status == RecordStatus::AxisUncertain {
                 eprintln!(
                     "warning: {}: the axis is not pinned down ({}); check it before using the figures, or give an axis with --axis",
                     scan.display(),

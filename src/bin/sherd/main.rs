@@ -4,6 +4,7 @@
 //! Errors go to stderr with exit code 1 (2 for bad arguments, from clap).
 
 mod batch;
+mod choices;
 mod common;
 mod demo;
 mod draw;

@@ -8,7 +8,8 @@ use std::process::ExitCode;
 use clap::Args;
 
 use sherd::mesh::atomic::write_bytes_atomically;
-use sherd::pipeline::{self, SherdRecord, STATUS_ERROR};
+use sherd::pipeline::{self, RecordStatus, SherdRecord};
+use sherd::refine::Criterion;
 
 use crate::common::{AnalysisArgs, RefineChoice};
 
@@ -44,7 +45,7 @@ pub struct OrientArgs {
 
 pub fn run(args: OrientArgs) -> Result<ExitCode, String> {
     let options = args.analysis.pipeline_options()?;
-    if args.pareto_plot.is_some() && args.analysis.refine != RefineChoice::Pareto {
+    if args.pareto_plot.is_some() && args.analysis.refine != RefineChoice(Some(Criterion::Pareto)) {
         return Err("--pareto-plot draws the Pareto criterion's front: add --refine pareto".into());
     }
     let file = args.scan.display().to_string();
@@ -53,7 +54,7 @@ pub fn run(args: OrientArgs) -> Result<ExitCode, String> {
         Ok(analysis) => SherdRecord::from_analysis(file, analysis),
         Err(error) => SherdRecord::failed(file, error),
     };
-    if record.status == STATUS_ERROR {
+    if record.status == RecordStatus::Error {
         return Err(record.error.unwrap_or_default());
     }
     if let (Some(path), Ok(analysis)) = (&args.pareto_plot, &analysis) {

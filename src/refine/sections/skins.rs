@@ -9,16 +9,18 @@ use crate::mesh::{Mesh, Point, Vector};
 use crate::orient::Skin;
 use crate::{Error, Result};
 
-/// Which skin of the fragment a criterion uses (the paper's "surface choice").
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
-pub enum Surface {
-    /// The inside of the vessel (normals towards the axis).
-    Inner,
-    /// The outside of the vessel (normals away from the axis).
-    Outer,
-    /// Both skins, each section of each skin treated on its own.
-    #[default]
-    Both,
+crate::vocabulary! {
+    /// Which skin of the fragment a criterion uses (the paper's "surface choice").
+    #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+    pub enum Surface: "surface", "surfaces" {
+        /// The inside of the vessel (normals towards the axis).
+        Inner = "inner" => "Inner surface only",
+        /// The outside of the vessel (normals away from the axis).
+        Outer = "outer" => "Outer surface only",
+        /// Both skins, each section of each skin treated on its own.
+        #[default]
+        Both = "both" => "Inner and outer surface",
+    }
 }
 
 impl Surface {
