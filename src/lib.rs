@@ -2,7 +2,8 @@
 //! archaeological illustrations.
 //!
 //! The crate is a pipeline of layers, each depending only on the ones listed before it
-//! (`tests/layers.rs` checks every `crate::` path against this order):
+//! (`tests/layers.rs` checks every `crate::` path against this order, and that no two
+//! modules use each other):
 //!
 //! * [`error`]: the error type every layer returns.
 //! * [`statistics`]: the order statistics the layers share.

@@ -111,6 +111,92 @@ fn each_module_uses_only_the_modules_declared_before_it() {
     assert!(breaches.is_empty(), "imports against the layer order of src/lib.rs ({}):\n{}", order.join(" < "), breaches.join("\n"));
 }
 
+/// The module a source file defines, as its path below the crate (`["orient", "verdict"]`).
+fn module_of(source: &Path, file: &Path) -> Vec<String> {
+    let relative = file.strip_prefix(source).expect("under src").with_extension("");
+    let mut path: Vec<String> = relative.components().map(|c| c.as_os_str().to_string_lossy().into_owned()).collect();
+    if path.last().is_some_and(|last| last == "mod" || last == "lib") {
+        path.pop();
+    }
+    path
+}
+
+/// The modules a file's code (comments aside) names through `crate::` or `super::` paths,
+/// each resolved to the longest module of `modules` it starts with.
+fn modules_named(text: &str, own: &[String], modules: &std::collections::BTreeSet<Vec<String>>) -> Vec<Vec<String>> {
+    let mut named = Vec::new();
+    for line in text.lines() {
+        let code = line.split("//").next().unwrap_or("");
+        for (start, _) in code.match_indices("::") {
+            let head_start = code[..start].rfind(|c: char| !(c.is_alphanumeric() || c == '_')).map_or(0, |at| at + 1);
+            let head = &code[head_start..start];
+            let base: Vec<String> = match head {
+                "crate" => Vec::new(),
+                "super" if own.is_empty() => continue,
+                "super" => own[..own.len() - 1].to_vec(),
+                _ => continue,
+            };
+            let rest: Vec<String> = code[start + 2..]
+                .split("::")
+                .map(|segment| segment.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect::<String>())
+                .take_while(|segment| !segment.is_empty())
+                .collect();
+            let mut path = base;
+            path.extend(rest);
+            if let Some(found) = (1..=path.len()).rev().map(|k| path[..k].to_vec()).find(|prefix| modules.contains(prefix)) {
+                named.push(found);
+            }
+        }
+    }
+    named
+}
+
+#[test]
+fn no_two_modules_use_each_other() {
+    let source = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    rust_files(&source, &mut files);
+    files.retain(|file| !file.strip_prefix(&source).expect("under src").starts_with("bin"));
+    let modules: std::collections::BTreeSet<Vec<String>> = files.iter().map(|file| module_of(&source, file)).collect();
+    let mut uses: std::collections::BTreeMap<Vec<String>, std::collections::BTreeSet<Vec<String>>> = Default::default();
+    for file in &files {
+        let own = module_of(&source, file);
+        let text = std::fs::read_to_string(file).expect("readable source file");
+        for used in modules_named(&text, &own, &modules) {
+            // A module and its parent name each other by nature (`mod` items, `super::`).
+            let related = used.starts_with(&own) || own.starts_with(&used);
+            if !related {
+                uses.entry(own.clone()).or_default().insert(used);
+            }
+        }
+    }
+    let mut circles = Vec::new();
+    for (module, used) in &uses {
+        for other in used {
+            if module < other && uses.get(other).is_some_and(|back| back.contains(module)) {
+                circles.push(format!("{} <-> {}", module.join("::"), other.join("::")));
+            }
+        }
+    }
+    // Longer circles: a module reachable from itself through others.
+    for start in uses.keys() {
+        let mut stack: Vec<Vec<String>> = uses[start].iter().cloned().collect();
+        let mut seen = std::collections::BTreeSet::new();
+        while let Some(next) = stack.pop() {
+            if &next == start {
+                circles.push(format!("{} reaches itself", start.join("::")));
+                break;
+            }
+            if seen.insert(next.clone()) {
+                stack.extend(uses.get(&next).into_iter().flatten().cloned());
+            }
+        }
+    }
+    circles.sort();
+    circles.dedup();
+    assert!(circles.is_empty(), "modules that use each other, directly or through others:\n{}", circles.join("\n"));
+}
+
 #[test]
 fn the_checker_sees_paths_in_code_and_in_groups() {
     let text = "use crate::mesh::Mesh;\nuse crate::{orient, refine::Criterion};\nlet x = crate::draw::f(); // crate::ffi in a comment\nsupercrate::x\nuse crate::{\n    profile::{a, b},\n    pipeline,\n};";

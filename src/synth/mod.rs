@@ -626,3 +626,13 @@ fn finish(seed: u64, shell: Shell, profile: &VesselProfile, deformation: &Deform
     };
     SynthSherd { mesh, truth, vertex_kinds, face_kinds }
 }
+
+/// The value of `all` whose `name` is `text` (case and `-`/`_` ignored), or an error
+/// listing the names.
+pub(crate) fn parse_name<T: Copy>(text: &str, all: &[T], name: fn(T) -> &'static str, what: &str) -> crate::Result<T> {
+    let wanted = text.trim().to_ascii_lowercase().replace('-', "_");
+    all.iter().copied().find(|&value| name(value) == wanted).ok_or_else(|| {
+        let names: Vec<&str> = all.iter().map(|&value| name(value)).collect();
+        crate::Error::InvalidArgument(format!("unknown {what} {text:?}: expected one of {}", names.join(", ")))
+    })
+}

@@ -12,7 +12,6 @@
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 
-use super::truth::distance_to_polyline;
 
 /// The vessel families the generator draws from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -75,7 +74,7 @@ impl std::str::FromStr for VesselShape {
     type Err = crate::Error;
 
     fn from_str(text: &str) -> crate::Result<Self> {
-        super::truth::parse_name(text, &VesselShape::ALL, VesselShape::name, "vessel shape")
+        super::parse_name(text, &VesselShape::ALL, VesselShape::name, "vessel shape")
     }
 }
 
@@ -550,4 +549,9 @@ pub(crate) fn find_spherical_band(profile: &VesselProfile, tolerance_mm: f64) ->
         }
     }
     best
+}
+
+/// Distance (mm) from `point` (`[r, z]`) to a polyline in the rz-plane.
+pub fn distance_to_polyline(point: [f64; 2], polyline: &[[f64; 2]]) -> f64 {
+    polyline.windows(2).map(|w| crate::mesh::segment_distance(point, w[0], w[1])).fold(f64::INFINITY, f64::min)
 }

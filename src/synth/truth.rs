@@ -5,6 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::deform::Deformation;
+pub use super::profile::distance_to_polyline;
 use super::profile::{RimForm, VesselShape};
 use crate::mesh::Point;
 use crate::axis::{Axis, AxisRecord};
@@ -45,7 +46,7 @@ impl std::str::FromStr for SherdPart {
     type Err = crate::Error;
 
     fn from_str(text: &str) -> crate::Result<Self> {
-        parse_name(text, &SherdPart::ALL, SherdPart::name, "sherd part")
+        super::parse_name(text, &SherdPart::ALL, SherdPart::name, "sherd part")
     }
 }
 
@@ -79,18 +80,8 @@ impl std::str::FromStr for HardCase {
     type Err = crate::Error;
 
     fn from_str(text: &str) -> crate::Result<Self> {
-        parse_name(text, &HardCase::ALL, HardCase::name, "hard case")
+        super::parse_name(text, &HardCase::ALL, HardCase::name, "hard case")
     }
-}
-
-/// The value of `all` whose `name` is `text` (case and `-`/`_` ignored), or an error
-/// listing the names.
-pub(crate) fn parse_name<T: Copy>(text: &str, all: &[T], name: fn(T) -> &'static str, what: &str) -> crate::Result<T> {
-    let wanted = text.trim().to_ascii_lowercase().replace('-', "_");
-    all.iter().copied().find(|&value| name(value) == wanted).ok_or_else(|| {
-        let names: Vec<&str> = all.iter().map(|&value| name(value)).collect();
-        crate::Error::InvalidArgument(format!("unknown {what} {text:?}: expected one of {}", names.join(", ")))
-    })
 }
 
 /// What a vertex or face of a synthetic sherd lies on.
@@ -235,7 +226,3 @@ pub fn sector_angle_deg(points: &[Point], axis: &Axis) -> f64 {
     (std::f64::consts::TAU - largest_gap).to_degrees()
 }
 
-/// Distance (mm) from `point` (`[r, z]`) to a polyline in the rz-plane.
-pub fn distance_to_polyline(point: [f64; 2], polyline: &[[f64; 2]]) -> f64 {
-    polyline.windows(2).map(|w| crate::mesh::segment_distance(point, w[0], w[1])).fold(f64::INFINITY, f64::min)
-}
