@@ -77,10 +77,12 @@ fn a011_gets_its_rills_level_without_help_and_from_three_rill_points() {
     let between = angle_deg(vector(&automatic["axis"]["direction"]), vector(&json["axis"]["direction"]));
     let between = between.min(180.0 - between);
     assert!(between < 3.0, "the automatic line lies {between:.2} deg from the rill points' one");
-    // The rill fixes the direction to the bootstrap's 4 degrees, at the limit where the
-    // record starts to doubt it: ok or axis_uncertain, its position within 5 mm either way.
+    // The rill fixes the direction to a few degrees, about the limit where the record
+    // starts to doubt it: ok or axis_uncertain. The piece's 54-degree arc leaves its
+    // position less sure: the sector jackknife (four replicates, Student's t) widens its
+    // interval to a few millimetres, not to tens.
     assert!(json["status"] == "ok" || json["status"] == "axis_uncertain", "{json:#}");
-    assert!(json["axis_distance_interval_mm"][1].as_f64().is_some_and(|upper| upper < 5.0), "{json:#}");
+    assert!(json["axis_distance_interval_mm"][1].as_f64().is_some_and(|upper| upper < 8.0), "{json:#}");
     let rills = &json["rills"];
     assert!(rills["count"].as_u64().unwrap() >= 3, "{json:#}");
     let slope = rills["slope_deg"].as_f64().unwrap();
