@@ -9,7 +9,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release --quiet --bin sherd
-sherd=$(pwd)/target/release/sherd
+# The binary cargo just built, wherever CARGO_TARGET_DIR puts it (relative to the root).
+target_dir=${CARGO_TARGET_DIR:-target}
+case $target_dir in /*) ;; *) target_dir=$(pwd)/$target_dir ;; esac
+sherd=$target_dir/release/sherd
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 count=${SHERD_BATCH_COUNT:-100}
