@@ -1,8 +1,16 @@
-//! The layering `src/lib.rs` promises: each top-level module uses only the modules declared
-//! before it there. A `crate::` path in a file of one module that names a later module
-//! fails the test, with the file, the line and the path.
+//! The structure `src/lib.rs` promises, checked on the source as written:
+//! - each top-level module uses only the modules declared before it there;
+//! - no two modules of `src/` use each other, directly or through others (a module and its
+//!   parent aside: they name each other by nature).
+//!
+//! Both checks read the same paths: every `crate::` and `super::` path of a file's code
+//! (comments aside), `use` groups such as `crate::{a, b::{c, d}}` expanded.
 
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
+
+/// A module's path below the crate root, e.g. `["orient", "verdict"]`.
+type ModulePath = Vec<String>;
 
 /// The top-level modules in the order `src/lib.rs` declares them.
 fn declared_order(source: &Path) -> Vec<String> {
@@ -10,6 +18,7 @@ fn declared_order(source: &Path) -> Vec<String> {
     lib.lines().filter_map(|line| line.trim().strip_prefix("pub mod ")).map(|rest| rest.trim_end_matches(';').trim().to_string()).collect()
 }
 
+/// The `.rs` files below `directory`.
 fn rust_files(directory: &Path, found: &mut Vec<PathBuf>) {
     for entry in std::fs::read_dir(directory).expect("readable source directory") {
         let path = entry.expect("directory entry").path();
@@ -21,66 +30,134 @@ fn rust_files(directory: &Path, found: &mut Vec<PathBuf>) {
     }
 }
 
-/// The names `crate::NAME` in `text`, with their line numbers.
-fn crate_paths(text: &str) -> Vec<(usize, String)> {
-    let mut paths = Vec::new();
-    for (number, line) in text.lines().enumerate() {
-        let code = line.split("//").next().unwrap_or("");
-        let mut rest = code;
-        while let Some(at) = rest.find("crate::") {
-            let after = &rest[at + "crate::".len()..];
-            let name: String = after.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
-            let preceded_by_word = rest[..at].chars().last().is_some_and(|c| c.is_alphanumeric() || c == '_');
-            if !preceded_by_word && !name.is_empty() {
-                paths.push((number + 1, name));
+/// The library's source files (the binaries sit above every layer and are left out), each
+/// with the module it defines.
+fn library_files(source: &Path) -> Vec<(PathBuf, ModulePath)> {
+    let mut files = Vec::new();
+    rust_files(source, &mut files);
+    files.retain(|file| !file.strip_prefix(source).expect("under src").starts_with("bin"));
+    files.sort();
+    files
+        .into_iter()
+        .map(|file| {
+            let relative = file.strip_prefix(source).expect("under src").with_extension("");
+            let mut module: ModulePath = relative.components().map(|c| c.as_os_str().to_string_lossy().into_owned()).collect();
+            if module.last().is_some_and(|last| last == "mod" || last == "lib") {
+                module.pop();
             }
-            rest = after;
-        }
-    }
-    paths
+            (file, module)
+        })
+        .collect()
 }
 
-/// A `use crate::{a, b::c}` group names several modules at once, over one line or several.
-fn grouped_paths(text: &str) -> Vec<(usize, String)> {
-    let mut paths = Vec::new();
-    let mut search_from = 0;
-    while let Some(found) = text[search_from..].find("crate::{") {
-        let start = search_from + found + "crate::{".len();
-        let (mut depth, mut item_start) = (1usize, start);
-        for (offset, c) in text[start..].char_indices() {
-            let at = start + offset;
-            let item_ends = match c {
-                '{' => {
-                    depth += 1;
-                    false
+fn is_word(c: char) -> bool {
+    c.is_alphanumeric() || c == '_'
+}
+
+/// The paths that follow `crate::` or `super::` in `code` (comments already removed), with
+/// their line numbers: `(line, head, segments)`, `head` being `crate` or `super` and a
+/// group expanded into one path per item. `super::super::x` gives `super` and
+/// `["super", "x"]`.
+fn paths(code: &str) -> Vec<(usize, &'static str, Vec<String>)> {
+    let mut heads: Vec<(usize, &'static str)> = Vec::new();
+    for head in ["crate", "super"] {
+        heads.extend(code.match_indices(&format!("{head}::")).map(|(at, _)| (at, head)));
+    }
+    heads.sort();
+    let mut found = Vec::new();
+    // The end of the last path read: a `super::` inside a group belongs to the group.
+    let mut read_until = 0;
+    for (at, head) in heads {
+        if at < read_until || code[..at].chars().last().is_some_and(is_word) {
+            continue; // inside a group, or `supercrate::`, `my_super::`
+        }
+        let line = code[..at].matches('\n').count() + 1;
+        let start = at + head.len() + 2;
+        let mut items = Vec::new();
+        read_until = start + read_path(&code[start..], &[], &mut items);
+        found.extend(items.into_iter().map(|segments| (line, head, segments)));
+    }
+    found
+}
+
+/// The length of the white space at the start of `text`.
+fn leading_space(text: &str) -> usize {
+    text.len() - text.trim_start().len()
+}
+
+/// Reads the path at the start of `text`: words joined by `::`, ending in a word or in a
+/// `{...}` group of such paths. Appends each complete path, after `prefix`, to `out`, and
+/// returns how many bytes it read.
+fn read_path(text: &str, prefix: &[String], out: &mut Vec<Vec<String>>) -> usize {
+    let mut path = prefix.to_vec();
+    let mut at = 0;
+    loop {
+        at += leading_space(&text[at..]);
+        if text[at..].starts_with('{') {
+            at += 1;
+            loop {
+                at += read_path(&text[at..], &path, out);
+                at += leading_space(&text[at..]);
+                // `a as b`: the alias names nothing.
+                if let Some(alias) = text[at..].strip_prefix("as").filter(|rest| rest.starts_with(char::is_whitespace)) {
+                    let name_start = at + 2 + leading_space(alias);
+                    at = name_start + text[name_start..].find(|c: char| !is_word(c)).unwrap_or(text.len() - name_start);
+                    at += leading_space(&text[at..]);
                 }
-                '}' => {
-                    depth -= 1;
-                    depth == 0
+                match text[at..].chars().next() {
+                    Some(',') => at += 1,
+                    Some('}') => return at + 1,
+                    _ => return at,
                 }
-                ',' => depth == 1,
-                _ => false,
-            };
-            if item_ends {
-                let item = text[item_start..at].trim_start();
-                let name: String = item.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
-                if !name.is_empty() {
-                    let leading = text[item_start..at].len() - item.len();
-                    let line = text[..item_start + leading].matches('\n').count() + 1;
-                    paths.push((line, name));
-                }
-                item_start = at + 1;
-            }
-            if depth == 0 {
-                search_from = at;
-                break;
             }
         }
-        if depth != 0 {
+        let word_length = text[at..].find(|c: char| !is_word(c)).unwrap_or(text.len() - at);
+        if word_length == 0 {
             break;
         }
+        let word = &text[at..at + word_length];
+        at += word_length;
+        if word != "self" {
+            path.push(word.to_string());
+        }
+        match text[at..].strip_prefix("::") {
+            Some(_) => at += 2,
+            None => break,
+        }
     }
-    paths
+    if path.len() > prefix.len() {
+        out.push(path);
+    }
+    at
+}
+
+/// `text` with its `//` comments (doc comments too) blanked, lines kept.
+fn without_comments(text: &str) -> String {
+    text.lines().map(|line| line.split("//").next().unwrap_or("")).collect::<Vec<_>>().join("\n")
+}
+
+/// The absolute module path a path of `own`'s file names: `crate::a::b` or `super::a`
+/// resolved, before its last segments are matched against the modules.
+fn absolute(own: &[String], head: &str, segments: &[String]) -> Option<Vec<String>> {
+    let mut base: Vec<String> = match head {
+        "crate" => Vec::new(),
+        _ => own.split_last()?.1.to_vec(),
+    };
+    let mut rest = segments;
+    while let Some((first, tail)) = rest.split_first() {
+        if first != "super" {
+            break;
+        }
+        base.pop()?;
+        rest = tail;
+    }
+    base.extend(rest.iter().cloned());
+    Some(base)
+}
+
+/// The longest module of `modules` that `path` starts with.
+fn module_named(path: &[String], modules: &BTreeSet<ModulePath>) -> Option<ModulePath> {
+    (1..=path.len()).rev().map(|k| path[..k].to_vec()).find(|prefix| modules.contains(prefix))
 }
 
 #[test]
@@ -89,118 +166,78 @@ fn each_module_uses_only_the_modules_declared_before_it() {
     let order = declared_order(&source);
     assert!(order.len() >= 8, "src/lib.rs declares too few modules to check: {order:?}");
     let rank = |name: &str| order.iter().position(|m| m == name);
-    let mut files = Vec::new();
-    rust_files(&source, &mut files);
     let mut breaches = Vec::new();
-    for file in &files {
-        let relative = file.strip_prefix(&source).expect("under src");
-        let top = relative.components().next().expect("a component").as_os_str().to_string_lossy().trim_end_matches(".rs").to_string();
-        // The crate root declares the order; the binaries sit above every layer.
-        let Some(own_rank) = rank(&top) else { continue };
-        let text = std::fs::read_to_string(file).expect("readable source file");
-        for (line, name) in crate_paths(&text).into_iter().chain(grouped_paths(&text)) {
+    for (file, own) in library_files(&source) {
+        // The crate root declares the order.
+        let Some(own_rank) = own.first().and_then(|top| rank(top)) else { continue };
+        let code = without_comments(&std::fs::read_to_string(&file).expect("readable source file"));
+        for (line, head, segments) in paths(&code) {
+            let Some(path) = absolute(&own, head, &segments) else { continue };
             // `crate::Error` and `crate::Result` are the error module's re-exports.
-            let name = if name == "Error" || name == "Result" { "error".to_string() } else { name };
-            if let Some(used_rank) = rank(&name) {
-                if used_rank > own_rank {
-                    breaches.push(format!("src/{}:{line}: `{top}` uses `crate::{name}`, declared after it", relative.display()));
-                }
+            let Some(top) = path.first().map(|name| if name == "Error" || name == "Result" { "error" } else { name.as_str() }) else {
+                continue;
+            };
+            if rank(top).is_some_and(|used_rank| used_rank > own_rank) {
+                let relative = file.strip_prefix(&source).expect("under src").display().to_string();
+                breaches.push(format!("src/{relative}:{line}: `{}` uses `crate::{top}`, declared after it", own[0]));
             }
         }
     }
     assert!(breaches.is_empty(), "imports against the layer order of src/lib.rs ({}):\n{}", order.join(" < "), breaches.join("\n"));
 }
 
-/// The module a source file defines, as its path below the crate (`["orient", "verdict"]`).
-fn module_of(source: &Path, file: &Path) -> Vec<String> {
-    let relative = file.strip_prefix(source).expect("under src").with_extension("");
-    let mut path: Vec<String> = relative.components().map(|c| c.as_os_str().to_string_lossy().into_owned()).collect();
-    if path.last().is_some_and(|last| last == "mod" || last == "lib") {
-        path.pop();
-    }
-    path
-}
-
-/// The modules a file's code (comments aside) names through `crate::` or `super::` paths,
-/// each resolved to the longest module of `modules` it starts with.
-fn modules_named(text: &str, own: &[String], modules: &std::collections::BTreeSet<Vec<String>>) -> Vec<Vec<String>> {
-    let mut named = Vec::new();
-    for line in text.lines() {
-        let code = line.split("//").next().unwrap_or("");
-        for (start, _) in code.match_indices("::") {
-            let head_start = code[..start].rfind(|c: char| !(c.is_alphanumeric() || c == '_')).map_or(0, |at| at + 1);
-            let head = &code[head_start..start];
-            let base: Vec<String> = match head {
-                "crate" => Vec::new(),
-                "super" if own.is_empty() => continue,
-                "super" => own[..own.len() - 1].to_vec(),
-                _ => continue,
-            };
-            let rest: Vec<String> = code[start + 2..]
-                .split("::")
-                .map(|segment| segment.chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect::<String>())
-                .take_while(|segment| !segment.is_empty())
-                .collect();
-            let mut path = base;
-            path.extend(rest);
-            if let Some(found) = (1..=path.len()).rev().map(|k| path[..k].to_vec()).find(|prefix| modules.contains(prefix)) {
-                named.push(found);
-            }
-        }
-    }
-    named
-}
-
 #[test]
 fn no_two_modules_use_each_other() {
     let source = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut files = Vec::new();
-    rust_files(&source, &mut files);
-    files.retain(|file| !file.strip_prefix(&source).expect("under src").starts_with("bin"));
-    let modules: std::collections::BTreeSet<Vec<String>> = files.iter().map(|file| module_of(&source, file)).collect();
-    let mut uses: std::collections::BTreeMap<Vec<String>, std::collections::BTreeSet<Vec<String>>> = Default::default();
-    for file in &files {
-        let own = module_of(&source, file);
-        let text = std::fs::read_to_string(file).expect("readable source file");
-        for used in modules_named(&text, &own, &modules) {
+    let files = library_files(&source);
+    let modules: BTreeSet<ModulePath> = files.iter().map(|(_, module)| module.clone()).collect();
+    let mut uses: BTreeMap<ModulePath, BTreeSet<ModulePath>> = BTreeMap::new();
+    for (file, own) in &files {
+        let code = without_comments(&std::fs::read_to_string(file).expect("readable source file"));
+        for (_, head, segments) in paths(&code) {
+            let Some(used) = absolute(own, head, &segments).and_then(|path| module_named(&path, &modules)) else { continue };
             // A module and its parent name each other by nature (`mod` items, `super::`).
-            let related = used.starts_with(&own) || own.starts_with(&used);
-            if !related {
+            if !(used.starts_with(own) || own.starts_with(&used)) {
                 uses.entry(own.clone()).or_default().insert(used);
             }
         }
     }
+    // A circle: a module reachable from itself through the modules it uses.
     let mut circles = Vec::new();
-    for (module, used) in &uses {
-        for other in used {
-            if module < other && uses.get(other).is_some_and(|back| back.contains(module)) {
-                circles.push(format!("{} <-> {}", module.join("::"), other.join("::")));
-            }
-        }
-    }
-    // Longer circles: a module reachable from itself through others.
     for start in uses.keys() {
-        let mut stack: Vec<Vec<String>> = uses[start].iter().cloned().collect();
-        let mut seen = std::collections::BTreeSet::new();
+        let mut stack: Vec<&ModulePath> = uses[start].iter().collect();
+        let mut seen = BTreeSet::new();
         while let Some(next) = stack.pop() {
-            if &next == start {
+            if next == start {
                 circles.push(format!("{} reaches itself", start.join("::")));
                 break;
             }
-            if seen.insert(next.clone()) {
-                stack.extend(uses.get(&next).into_iter().flatten().cloned());
+            if seen.insert(next) {
+                stack.extend(uses.get(next).into_iter().flatten());
             }
         }
     }
-    circles.sort();
-    circles.dedup();
     assert!(circles.is_empty(), "modules that use each other, directly or through others:\n{}", circles.join("\n"));
 }
 
 #[test]
-fn the_checker_sees_paths_in_code_and_in_groups() {
-    let text = "use crate::mesh::Mesh;\nuse crate::{orient, refine::Criterion};\nlet x = crate::draw::f(); // crate::ffi in a comment\nsupercrate::x\nuse crate::{\n    profile::{a, b},\n    pipeline,\n};";
-    let found: Vec<(usize, String)> = crate_paths(text).into_iter().chain(grouped_paths(text)).collect();
-    let expected = [(1, "mesh"), (3, "draw"), (2, "orient"), (2, "refine"), (6, "profile"), (7, "pipeline")];
-    assert_eq!(found, expected.map(|(line, name)| (line, name.to_string())));
+fn the_checker_reads_paths_in_code_and_in_groups() {
+    let text = "use crate::mesh::Mesh;\nuse crate::{orient, refine::Criterion};\nlet x = crate::draw::f(); // crate::ffi in a comment\nsupercrate::x\nuse super::{\n    profile::{a, b},\n    self,\n    super::pipeline,\n};\nuse crate::{axis::Axis as A, synth};";
+    let found: Vec<(usize, &str, String)> =
+        paths(&without_comments(text)).into_iter().map(|(line, head, segments)| (line, head, segments.join("::"))).collect();
+    let expected = [
+        (1, "crate", "mesh::Mesh"),
+        (2, "crate", "orient"),
+        (2, "crate", "refine::Criterion"),
+        (3, "crate", "draw::f"),
+        (5, "super", "profile::a"),
+        (5, "super", "profile::b"),
+        (5, "super", "super::pipeline"),
+        (10, "crate", "axis::Axis"),
+        (10, "crate", "synth"),
+    ];
+    assert_eq!(found, expected.map(|(line, head, path)| (line, head, path.to_string())));
+    let own = ["orient".to_string(), "verdict".to_string()];
+    assert_eq!(absolute(&own, "super", &["super".to_string(), "refine".to_string()]), Some(vec!["refine".to_string()]));
+    assert_eq!(absolute(&own, "super", &["axis".to_string()]), Some(vec!["orient".to_string(), "axis".to_string()]));
 }
