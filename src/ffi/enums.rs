@@ -248,14 +248,7 @@ pub(crate) trait CEnum: Copy + 'static + From<Self::Library> {
     /// The library's choice for `value` from the host, or an error naming `argument`, the
     /// constants' prefix and the values accepted.
     fn parse(value: u32, argument: &str) -> FfiResult<Self::Library> {
-        match Self::ALL.iter().find(|known| known.value() == value) {
-            Some(&known) => Ok(known.into()),
-            None => Err(Failure::invalid(format!(
-                "`{argument}` {value} is not a {}* value ({})",
-                constant_prefix(Self::C_NAME),
-                value_range(Self::ALL.iter().map(|known| known.value()))
-            ))),
-        }
+        known_value(Self::ALL, Self::value, value, argument, &constant_prefix(Self::C_NAME)).map(Into::into)
     }
 
     /// The value of the library's `choice`.
@@ -267,6 +260,14 @@ pub(crate) trait CEnum: Copy + 'static + From<Self::Library> {
 /// `SHERD_CRITERION_` for `SherdCriterion`: the C constants' prefix of an enum.
 pub(crate) fn constant_prefix(c_name: &str) -> String {
     screaming_snake_case(c_name) + "_"
+}
+
+/// The one of `all` whose ABI value (`value_of`) is `value` from the host, or an error
+/// naming `argument`, the constants' `prefix` and the values accepted.
+fn known_value<T: Copy>(all: &[T], value_of: impl Fn(T) -> u32, value: u32, argument: &str, prefix: &str) -> FfiResult<T> {
+    all.iter().copied().find(|&known| value_of(known) == value).ok_or_else(|| {
+        Failure::invalid(format!("`{argument}` {value} is not a {prefix}* value ({})", value_range(all.iter().map(|&known| value_of(known)))))
+    })
 }
 
 /// "0 to 4" for contiguous values, else "1, 2 or 4".
@@ -341,13 +342,7 @@ macro_rules! c_enums {
 
             /// The vocabulary for a value from the host.
             pub(crate) fn parse(value: u32, argument: &str) -> FfiResult<SherdVocabulary> {
-                match SherdVocabulary::ALL.iter().find(|known| **known as u32 == value) {
-                    Some(&known) => Ok(known),
-                    None => Err(Failure::invalid(format!(
-                        "`{argument}` {value} is not a SHERD_VOCABULARY_* value ({})",
-                        value_range(SherdVocabulary::ALL.iter().map(|known| *known as u32))
-                    ))),
-                }
+                known_value(SherdVocabulary::ALL, |known| known as u32, value, argument, "SHERD_VOCABULARY_")
             }
 
             /// Its named values, in the library's order.
