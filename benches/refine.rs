@@ -3,8 +3,11 @@
 //! the rim is levelled by the tangent plane, the body refined by the circles criterion),
 //! and each criterion alone from a start 3 degrees off.
 
+#[path = "../tests/support/evaluation.rs"]
+mod evaluation;
+
 use criterion::{criterion_group, criterion_main, Criterion as Bench};
-use sherd::refine::accuracy::perturbed_axis;
+use evaluation::perturbed_axis;
 use sherd::orient::{orient_automatic, OrientOptions};
 use sherd::refine::{refine, Criterion, RefineOptions};
 use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};

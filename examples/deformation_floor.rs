@@ -25,10 +25,13 @@
 //! mean point distance, the share within 0.3 degrees (the median goal needs half),
 //! the median and 90th percentile angle error.
 
+#[path = "../tests/support/evaluation.rs"]
+mod evaluation;
+
 use nalgebra::{DMatrix, DVector, Rotation3, Vector3};
 use rayon::prelude::*;
 use sherd::mesh::{segment_distance, Point};
-use sherd::refine::accuracy::refinement_corpus;
+use evaluation::refinement_corpus;
 use sherd::orient::{mean_point_distance_mm, Axis};
 use sherd::refine::profile::SplineProfile;
 use sherd::statistics::nearest_rank_quantile;

@@ -5,11 +5,14 @@
 //! `cargo run --release --example orient_accuracy [VESSELS] [FRAGMENTS_PER_VESSEL] [CSV]`
 //! (defaults 10, 30, no CSV).
 
+#[path = "../tests/support/evaluation.rs"]
+mod evaluation;
+
 use std::path::{Path, PathBuf};
 
 use sherd::mesh::io::read_mesh;
 use rayon::prelude::*;
-use sherd::orient::accuracy::{evaluate, read_sfspp_pot_c, FragmentOutcome, SfsppPiece, Summary};
+use evaluation::{evaluate, read_sfspp_pot_c, FragmentOutcome, SfsppPiece, Summary};
 use sherd::orient::{orient_automatic, OrientOptions, Orientation};
 use sherd::synth::{generate_vessel, synthetic_sherd, HardCase, SherdOptions, SherdPart, VesselOptions};
 

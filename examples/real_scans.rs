@@ -5,6 +5,9 @@
 //!
 //! `cargo run --release --example real_scans`
 
+#[path = "../tests/support/evaluation.rs"]
+mod evaluation;
+
 use std::path::Path;
 
 use sherd::mesh::Point;
@@ -36,7 +39,7 @@ fn main() {
     println!("| scan | status | axis line | right way up | wheel rills |");
     println!("|---|---|---|---|---|");
     let folder = data.join("sfspp_pot_C");
-    match sherd::orient::accuracy::read_sfspp_pot_c(&folder) {
+    match evaluation::read_sfspp_pot_c(&folder) {
         Ok(pieces) => {
             for piece in pieces {
                 match analyse(piece.cloud, &options) {

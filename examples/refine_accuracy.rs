@@ -25,13 +25,16 @@
 //! into the turn towards the sherd and across it, see `error_toward_sherd_deg`), and a
 //! `FAILED` line with the error for each fragment a criterion could not refine.
 
+#[path = "../tests/support/evaluation.rs"]
+mod evaluation;
+
 use std::time::Instant;
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use sherd::statistics::nearest_rank_quantile;
-use sherd::refine::accuracy::{perturbed_axis, refinement_corpus, REFINEMENT_CORPUS_CELL_MM};
+use evaluation::{perturbed_axis, refinement_corpus, REFINEMENT_CORPUS_CELL_MM};
 use sherd::orient::{mean_point_distance_mm, orient_automatic, Axis, OrientOptions};
 use sherd::profile::measure::{measure, MeasureOptions, Measurements};
 use sherd::refine::{refine, Criterion, RefineOptions};
@@ -272,7 +275,7 @@ fn main() {
 /// angle to the reference before and after. Skipped when the data are absent.
 fn real_sherds() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data/sfspp_pot_C");
-    let pieces = match sherd::orient::accuracy::read_sfspp_pot_c(&root) {
+    let pieces = match evaluation::read_sfspp_pot_c(&root) {
         Ok(pieces) => pieces,
         Err(error) => return println!("\nSfS++ data absent or unreadable ({error}): skipped"),
     };

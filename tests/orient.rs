@@ -1,6 +1,9 @@
 //! Orientation on analytic sherds built here (a wall patch of a revolved profile with
 //! both skins and fracture faces, noisy, moved to a random pose), and bad input.
 
+#[path = "support/evaluation.rs"]
+mod evaluation;
+
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -248,8 +251,8 @@ fn skins_are_segmented() {
 
 /// A small synthetic corpus (fixed seeds): three vessels broken into 12 fragments each,
 /// 0.8 mm cells, random poses.
-fn small_corpus() -> Vec<sherd::orient::accuracy::FragmentOutcome> {
-    use sherd::orient::accuracy::evaluate;
+fn small_corpus() -> Vec<evaluation::FragmentOutcome> {
+    use evaluation::evaluate;
     use sherd::synth::{generate_vessel, VesselOptions};
     let options = VesselOptions { fragment_count: 12, random_motion: true, cell_size_mm: 0.8, ..Default::default() };
     (0..3u64)
@@ -269,8 +272,8 @@ fn small_corpus() -> Vec<sherd::orient::accuracy::FragmentOutcome> {
 fn synthetic_corpus_meets_the_accuracy_goals() {
     let outcomes = small_corpus();
     assert!(outcomes.len() >= 30, "only {} fragments", outcomes.len());
-    let summary = sherd::orient::accuracy::Summary::of(&outcomes);
-    println!("{}\n{}", sherd::orient::accuracy::Summary::table_header(), summary.table_row("test corpus"));
+    let summary = evaluation::Summary::of(&outcomes);
+    println!("{}\n{}", evaluation::Summary::table_header(), summary.table_row("test corpus"));
     assert!(summary.median_angle_deg <= 2.0, "median angle error {:.2} deg", summary.median_angle_deg);
     assert!(
         summary.wrong_angle_unflagged_fraction <= 0.05,
@@ -374,9 +377,9 @@ fn the_sfspp_sherds_are_oriented_near_their_reference_or_flagged() {
         println!("SKIP: {} is absent", folder.display());
         return;
     }
-    let pieces = sherd::orient::accuracy::read_sfspp_pot_c(&folder).unwrap();
+    let pieces = evaluation::read_sfspp_pot_c(&folder).unwrap();
     let options = PipelineOptions { refine: Some(Default::default()), ..Default::default() };
-    for (piece, sherd::orient::accuracy::SfsppPiece { cloud, reference, .. }) in (1..).zip(pieces) {
+    for (piece, evaluation::SfsppPiece { cloud, reference, .. }) in (1..).zip(pieces) {
         let analysis = analyse(cloud, &options).unwrap();
         let record = SherdRecord::from_analysis(format!("piece {piece}"), &analysis);
         let angle = analysis.axis().line_angle_to_deg(&reference);
@@ -439,4 +442,23 @@ fn a_level_foot_is_not_taken_for_a_rim() {
         println!("base seed {seed}: {:?}, sense {sense:.3}, {}", orientation.verdict, orientation.report.direction_cue);
         assert!(!(orientation.verdict.is_oriented() && sense < 0.0), "seed {seed} upside down: {}", orientation.report.direction_cue);
     }
+}
+
+#[test]
+fn a_missing_or_malformed_sfspp_folder_is_an_error_naming_the_file_and_line() {
+    let folder = tempfile::tempdir().unwrap();
+    let missing = evaluation::read_sfspp_pot_c(folder.path()).unwrap_err().to_string();
+    assert!(missing.contains("reference_axis_derived.txt"), "{missing}");
+    std::fs::create_dir_all(folder.path().join("ground_truth")).unwrap();
+    std::fs::create_dir_all(folder.path().join("surfaces_subsample")).unwrap();
+    std::fs::write(
+        folder.path().join("ground_truth/reference_axis_derived.txt"),
+        "# reference A\nPot_C_Piece_01 0 0 0 0 0\n",
+    )
+    .unwrap();
+    let malformed = evaluation::read_sfspp_pot_c(folder.path()).unwrap_err().to_string();
+    assert!(malformed.contains("line 2") && malformed.contains("found 5 numbers"), "{malformed}");
+    std::fs::write(folder.path().join("ground_truth/reference_axis_derived.txt"), "Pot_C_Piece_01 0 0 0 0 0 1\n").unwrap();
+    let no_surface = evaluation::read_sfspp_pot_c(folder.path()).unwrap_err().to_string();
+    assert!(no_surface.contains("Pot_C_Piece_01_Surface_*"), "{no_surface}");
 }

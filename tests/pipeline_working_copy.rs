@@ -3,6 +3,9 @@
 //! `refine_on_full_resolution` asks; the tangent plane levels on the full mesh and places
 //! on the copy), and the measurements never (they are taken on the full-resolution mesh).
 
+#[path = "support/evaluation.rs"]
+mod evaluation;
+
 use sherd::orient::{decimated_copy, OrientOptions};
 use sherd::pipeline::{analyse, PipelineOptions};
 use sherd::refine::{refine, refine_placing_on, Criterion, RefineOptions};
@@ -72,7 +75,7 @@ fn assert_refined_on_the_mesh_its_criterion_wants(analysis: &sherd::pipeline::An
         // the axis. From a start a millimetre off, the Nelder-Mead search of the shifts
         // may stop in the shallow radial valley of a short rim at different points on the
         // two meshes.
-        let shifted = sherd::refine::accuracy::perturbed_axis(start, 0.0, 0.0, 0.0, 3.0);
+        let shifted = evaluation::perturbed_axis(start, 0.0, 0.0, 0.0, 3.0);
         let on_copy = refine_placing_on(&analysis.mesh, &copy, &shifted, &RefineOptions::default()).unwrap().axis;
         let on_full_mesh = refine(&analysis.mesh, &shifted, &RefineOptions::default()).unwrap().axis;
         let unplaced = refine(&analysis.mesh, &shifted, &RefineOptions { tangent_places_by_circles: false, ..Default::default() }).unwrap().axis;

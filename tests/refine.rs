@@ -2,6 +2,9 @@
 //! skins, a flat lip on top) with a known axis, moved by a rigid motion, refined from a
 //! start axis a few degrees off.
 
+#[path = "support/evaluation.rs"]
+mod evaluation;
+
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use sherd::mesh::{Mesh, Point, Vector};
 use sherd::orient::{mean_point_distance_mm, Axis};
@@ -103,7 +106,7 @@ fn placed(mesh: &Mesh, seed: u64, tilt_deg: f64, shift_mm: f64) -> (Mesh, Axis, 
 fn corpus_start(id: u64, sherd: &sherd::synth::SynthSherd) -> Axis {
     let centroid = sherd.mesh.centroid().unwrap();
     let azimuth = (id as f64 * 2.4).rem_euclid(std::f64::consts::TAU);
-    sherd::refine::accuracy::perturbed_axis(&sherd.truth.axis.normalized(&centroid), azimuth, 3.0, azimuth + 1.0, 2.0)
+    evaluation::perturbed_axis(&sherd.truth.axis.normalized(&centroid), azimuth, 3.0, azimuth + 1.0, 2.0)
 }
 
 #[test]
@@ -329,7 +332,7 @@ fn the_profile_criterion_recovers_perfect_solids_of_the_synthetic_corpus() {
         let sherd = &generate_vessel(vessel_seed, &options).fragments[fragment];
         let truth = sherd.truth.axis;
         // The true axis turned by 3 degrees about a horizontal line and shifted by 2 mm.
-        let start = sherd::refine::accuracy::perturbed_axis(&truth, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
+        let start = evaluation::perturbed_axis(&truth, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
         let refined = refine(&sherd.mesh, &start, &RefineOptions { criterion: Criterion::Profile, ..Default::default() }).unwrap();
         let angle = refined.axis.line_angle_to_deg(&truth);
         let distance = mean_point_distance_mm(&sherd.mesh.positions, &refined.axis, &truth);
@@ -351,7 +354,7 @@ fn a_flat_underside_gives_the_tangent_plane_its_tilts() {
     for (vessel_seed, fragment) in [(6u64, 22usize), (8, 31), (3, 28), (3, 18)] {
         let sherd = &generate_vessel(vessel_seed, &options).fragments[fragment];
         let truth = sherd.truth.axis;
-        let start = sherd::refine::accuracy::perturbed_axis(&truth, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
+        let start = evaluation::perturbed_axis(&truth, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
         let refined = refine(&sherd.mesh, &start, &RefineOptions::default()).unwrap();
         let angle = refined.axis.line_angle_to_deg(&truth);
         println!("vessel {vessel_seed} fragment {fragment}: {angle:.3} deg, {}", refined.report.reason);
@@ -373,7 +376,7 @@ fn a_rounded_underside_is_not_taken_for_a_base() {
     for (vessel_seed, fragment) in [(2u64, 6usize), (7, 5), (7, 27)] {
         let sherd = &generate_vessel(vessel_seed, &options).fragments[fragment];
         let truth = sherd.truth.axis;
-        let start = sherd::refine::accuracy::perturbed_axis(&truth, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
+        let start = evaluation::perturbed_axis(&truth, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
         let surface = sherd::refine::sections::PreparedSurface::new(&sherd.mesh, &start, Surface::Both, None).unwrap();
         let edges = sherd::refine::detect_edges(&surface, &RefineOptions::default());
         assert!(edges.is_empty(), "vessel {vessel_seed} fragment {fragment}: {edges:?}");
@@ -419,7 +422,7 @@ fn a_damaged_section_inside_epsilon_does_not_tip_a_rim() {
 fn a_floor_has_no_rim_but_a_flat_face() {
     use sherd::synth::{generate_vessel, VesselOptions};
     let options = VesselOptions { fragment_count: 34, random_motion: true, ..Default::default() };
-    let start_of = |truth: &Axis| sherd::refine::accuracy::perturbed_axis(truth, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
+    let start_of = |truth: &Axis| evaluation::perturbed_axis(truth, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
     for (vessel_seed, fragment) in [(0u64, 14usize), (2, 28)] {
         let sherd = &generate_vessel(vessel_seed, &options).fragments[fragment];
         let start = start_of(&sherd.truth.axis);
@@ -455,7 +458,7 @@ fn a_levelling_at_the_search_bound_is_no_edge() {
     let options = VesselOptions { fragment_count: 34, random_motion: true, ..Default::default() };
     for (vessel_seed, fragment) in [(0u64, 14usize), (1, 33)] {
         let sherd = &generate_vessel(vessel_seed, &options).fragments[fragment];
-        let start = sherd::refine::accuracy::perturbed_axis(&sherd.truth.axis, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
+        let start = evaluation::perturbed_axis(&sherd.truth.axis, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
         let past_bound_is_flagged = |report: &sherd::refine::RefineReport| {
             report.tilt_deg < 9.9 || report.flag_reason.as_deref().is_some_and(|r| r.contains("search bound"))
         };
@@ -468,7 +471,7 @@ fn a_levelling_at_the_search_bound_is_no_edge() {
     }
     // The floor is no base, levelled at the bound.
     let sherd = &generate_vessel(0, &options).fragments[14];
-    let start = sherd::refine::accuracy::perturbed_axis(&sherd.truth.axis, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
+    let start = evaluation::perturbed_axis(&sherd.truth.axis, 0.8f64.atan2(0.6), 3.0, 0.0, 2.0);
     let surface = sherd::refine::sections::PreparedSurface::new(&sherd.mesh, &start, Surface::Both, None).unwrap();
     let edges = sherd::refine::detect_edges_over(&surface, &RefineOptions::default(), [0.0, 0.0]);
     assert!(edges.is_empty(), "{edges:?}");
@@ -488,7 +491,7 @@ fn a_small_floor_beside_the_rising_wall_gives_the_tilts() {
     for (vessel_seed, fragment) in [(6u64, 24usize), (3, 1), (1, 3)] {
         let sherd = &generate_vessel(vessel_seed, &options).fragments[fragment];
         for azimuth_deg in [0.0f64, 90.0, 180.0, 270.0] {
-            let start = sherd::refine::accuracy::perturbed_axis(&sherd.truth.axis, azimuth_deg.to_radians(), 3.0, 0.0, 2.0);
+            let start = evaluation::perturbed_axis(&sherd.truth.axis, azimuth_deg.to_radians(), 3.0, 0.0, 2.0);
             let refined = refine(&sherd.mesh, &start, &RefineOptions::default()).unwrap();
             let angle = refined.axis.line_angle_to_deg(&sherd.truth.axis);
             println!("vessel {vessel_seed} fragment {fragment}, start turned towards {azimuth_deg}: {angle:.3} deg, {}", refined.report.reason);
@@ -511,7 +514,7 @@ fn a_fine_mesh_places_a_levelled_base_by_patches_of_its_normals() {
     for (vessel_seed, fragment) in [(9u64, 19usize), (1, 9), (3, 16)] {
         let sherd = &generate_vessel(vessel_seed, &fine).fragments[fragment];
         for azimuth_deg in [0.0f64, 120.0, 240.0] {
-            let start = sherd::refine::accuracy::perturbed_axis(&sherd.truth.axis, azimuth_deg.to_radians(), 3.0, azimuth_deg.to_radians(), 2.0);
+            let start = evaluation::perturbed_axis(&sherd.truth.axis, azimuth_deg.to_radians(), 3.0, azimuth_deg.to_radians(), 2.0);
             let refined = refine(&sherd.mesh, &start, &RefineOptions::default()).unwrap();
             let distance = mean_point_distance_mm(&sherd.mesh.positions, &refined.axis, &sherd.truth.axis);
             println!("vessel {vessel_seed} fragment {fragment}, start towards {azimuth_deg}: {distance:.2} mm, {}", refined.report.reason);
@@ -531,7 +534,7 @@ fn a_handful_of_sections_is_nothing_to_refine_by() {
     let fine = VesselOptions { fragment_count: 34, random_motion: true, cell_size_mm: 0.8, ..Default::default() };
     for (vessel_seed, fragment) in [(5u64, 23usize), (2, 19), (7, 27)] {
         let sherd = &generate_vessel(vessel_seed, &fine).fragments[fragment];
-        let start = sherd::refine::accuracy::perturbed_axis(&sherd.truth.axis, 1.0, 3.0, 2.0, 2.0);
+        let start = evaluation::perturbed_axis(&sherd.truth.axis, 1.0, 3.0, 2.0, 2.0);
         let refined = refine(&sherd.mesh, &start, &RefineOptions::default()).unwrap();
         let distance = mean_point_distance_mm(&sherd.mesh.positions, &refined.axis, &sherd.truth.axis);
         println!("vessel {vessel_seed} fragment {fragment}: {distance:.2} mm, {:?}", refined.report.flag_reason);
@@ -552,12 +555,12 @@ fn a_rims_plane_through_finer_sections_holds_its_tilt_better() {
     use sherd::refine::tangent::{level_by_plane, level_edge, plane_section_count, Edge};
     use sherd::refine::FreeParameters;
     use sherd::synth::SherdPart;
-    let corpus = sherd::refine::accuracy::refinement_corpus(20, 1.0, 0.02, 0.8);
+    let corpus = evaluation::refinement_corpus(20, 1.0, 0.02, 0.8);
     let settings = SearchSettings { free: FreeParameters::TiltsOnly, tilt_bound_rad: 10f64.to_radians(), ..Default::default() };
     let (mut coarse_within, mut fine_within, mut rims) = (0, 0, 0);
     for (id, sherd) in corpus.iter().filter(|(_, s)| s.truth.part == SherdPart::Rim) {
         let azimuth = (*id as f64 * 2.4).rem_euclid(std::f64::consts::TAU);
-        let start = sherd::refine::accuracy::perturbed_axis(&sherd.truth.axis, azimuth, 3.0, azimuth + 1.0, 2.0);
+        let start = evaluation::perturbed_axis(&sherd.truth.axis, azimuth, 3.0, azimuth + 1.0, 2.0);
         let surface = PreparedSurface::new(&sherd.mesh, &start, Surface::Both, None).unwrap();
         let Ok(levelled) = level_edge(&surface, Edge::Rim, 3.0, 12, [0.0; 4], &settings, None) else { continue };
         let angle = |sections: usize| {
@@ -583,7 +586,7 @@ fn body_sherds_take_the_mean_of_the_circles_and_the_profile() {
     use sherd::synth::SherdPart;
     // Without a level rim or base, Eq. 2 reads the horizontal sections and the profile
     // criterion the vertical ones; the pot's deformation misleads them differently.
-    let corpus = sherd::refine::accuracy::refinement_corpus(6, 1.0, 0.02, 0.8);
+    let corpus = evaluation::refinement_corpus(6, 1.0, 0.02, 0.8);
     let (mut circles_angles, mut auto_angles) = (Vec::new(), Vec::new());
     for (id, sherd) in corpus.iter().filter(|(_, s)| s.truth.part == SherdPart::Body) {
         let start = corpus_start(*id, sherd);
@@ -619,7 +622,7 @@ fn a_clean_scan_is_flagged_where_its_axis_slides_as_a_noisy_one_is() {
     // with the corpus's 0.02 mm noise 2 of the 19 fragments past 4 mm are not flagged;
     // without noise, measured against the residual alone, 14 of 19; against at least
     // `MIN_PLACING_RESIDUAL_MM`, 8 of 18.
-    let corpus = sherd::refine::accuracy::refinement_corpus(8, 1.0, 0.0, 0.8);
+    let corpus = evaluation::refinement_corpus(8, 1.0, 0.0, 0.8);
     let (mut wrong, mut wrong_unflagged, mut flagged, mut refined) = (0, 0, 0, 0);
     for (id, sherd) in &corpus {
         let start = corpus_start(*id, sherd);
@@ -643,7 +646,7 @@ fn an_averaged_direction_eq2_cannot_place_turns_about_the_circles_axis() {
     // the fragment's radius: an axis Eq. 2 alone had within 4 mm ends past it. These 12
     // vessels from these starts: placed by Eq. 2 everywhere, auto had 179 within 4 mm
     // against the circles' 181; turned about the circles' axis there, 187.
-    let corpus = sherd::refine::accuracy::refinement_corpus(12, 1.0, 0.02, 0.8);
+    let corpus = evaluation::refinement_corpus(12, 1.0, 0.02, 0.8);
     let (mut circles_within, mut auto_within, mut compared, mut turned) = (0, 0, 0, 0);
     for (id, sherd) in &corpus {
         let start = corpus_start(*id, sherd);
@@ -672,7 +675,7 @@ fn a_clean_scans_wrong_axis_moves_when_a_quarter_of_its_arc_is_left_out() {
     // Without scan noise the bootstrap's resampled sections agree about an axis the
     // vessel's deformation put off; the arc without one of its quarters reads another
     // deformation.
-    let corpus = sherd::refine::accuracy::refinement_corpus(5, 1.0, 0.0, 0.8);
+    let corpus = evaluation::refinement_corpus(5, 1.0, 0.0, 0.8);
     let (mut wrong, mut wrong_moved, mut right, mut right_moved) = (0, 0, 0, 0);
     for (id, sherd) in &corpus {
         let start = corpus_start(*id, sherd);

@@ -8,7 +8,6 @@
 //! ([`line_complex`]) -> multi-start Nelder-Mead and MM refinement ([`halir`],
 //! [`mm_regression`]) -> leave-one-region-out stability ([`region_stability`]) -> sense base to rim ([`direction`]) -> verdict ([`verdict`]).
 
-pub mod accuracy;
 pub mod direction;
 pub mod halir;
 pub mod landscape;

@@ -13,7 +13,6 @@
 //! circles' and the profile's directions), and never returns an axis its own criterion
 //! rates worse than the start.
 
-pub mod accuracy;
 pub mod circle_fit;
 pub mod circles;
 pub mod edges;

@@ -1,12 +1,64 @@
-//! Measuring the orientation against synthetic ground truth: the figures the issue asks
-//! for (angle error, the paper's mean point distance, flagged and wrong-unflagged
-//! fractions), shared by the accuracy example and the tests.
+//! The evaluation harnesses shared by the accuracy examples, the refinement's tests and
+//! its benches (each includes this file as a module): the simulated pre-orientation errors
+//! and the refinement corpus, the orientation's figures against synthetic ground truth,
+//! and the reader of the SfS++ pot C dataset. They measure the library and are not part
+//! of it.
+#![allow(dead_code)] // each includer uses part of it
 
 use serde::Serialize;
 
-use super::{mean_point_distance_mm, orient_automatic, OrientOptions, Orientation};
-use crate::statistics::nearest_rank_quantile;
-use crate::synth::{SherdPart, SynthSherd};
+use sherd::orient::{mean_point_distance_mm, orient_automatic, Axis, OrientOptions, Orientation};
+use sherd::statistics::nearest_rank_quantile;
+use sherd::synth::{SherdPart, SynthSherd};
+
+// ----------------------------------------------------------------------------- refinement corpus
+
+/// A simulated pre-orientation error: `truth` turned by `tilt_deg` about the horizontal
+/// direction at `tilt_azimuth_rad` and its point moved by `shift_mm` along the horizontal
+/// direction at `shift_azimuth_rad`, both azimuths in the axis's own frame
+/// ([`Axis::rotation_from_z`]). The refinement's accuracy example, tests and benches start
+/// from it.
+pub fn perturbed_axis(truth: &Axis, tilt_azimuth_rad: f64, tilt_deg: f64, shift_azimuth_rad: f64, shift_mm: f64) -> Axis {
+    let frame = truth.rotation_from_z();
+    let horizontal = |azimuth: f64| frame * sherd::mesh::Vector::new(azimuth.cos(), azimuth.sin(), 0.0);
+    let turn = nalgebra::UnitQuaternion::from_axis_angle(&nalgebra::Unit::new_normalize(horizontal(tilt_azimuth_rad)), tilt_deg.to_radians());
+    Axis::new(truth.point + horizontal(shift_azimuth_rad) * shift_mm, turn * truth.direction.into_inner())
+}
+
+/// Fragments per vessel of the refinement corpus (the paper's synthetic vessel broke into 34).
+pub const REFINEMENT_CORPUS_FRAGMENTS_PER_VESSEL: usize = 34;
+
+/// Mesh cells of the refinement corpus, mm: the orientation issue's corpus
+/// (`examples/orient_accuracy.rs`, `tests/orient.rs`), fragments of a few thousand
+/// vertices, as a decimated scan. `REFINE_ACCURACY_CELL_MM=2` gives the synthetic
+/// generator's default 2 mm cells instead (a body fragment about 1000 vertices).
+pub const REFINEMENT_CORPUS_CELL_MM: f64 = 0.8;
+
+/// The refinement corpus of `examples/refine_accuracy.rs` and `examples/deformation_floor.rs`:
+/// vessels `0..vessels`, each broken into 34 fragments moved by random rigid motions, with
+/// the deformation scaled by `deformation_scale` (1: the default vessels), scan noise
+/// `noise_mm` and mesh cells of `cell_size_mm` ([`REFINEMENT_CORPUS_CELL_MM`] in
+/// `refine_accuracy`), the hard cases left out; each fragment with its id
+/// `vessel * 1000 + index`.
+pub fn refinement_corpus(vessels: u64, deformation_scale: f64, noise_mm: f64, cell_size_mm: f64) -> Vec<(u64, SynthSherd)> {
+    let options = sherd::synth::VesselOptions {
+        fragment_count: REFINEMENT_CORPUS_FRAGMENTS_PER_VESSEL,
+        random_motion: true,
+        deformation_scale,
+        noise_mm,
+        cell_size_mm,
+        ..Default::default()
+    };
+    (0..vessels)
+        .flat_map(|seed| {
+            let vessel = sherd::synth::generate_vessel(seed, &options);
+            vessel.fragments.into_iter().enumerate().map(move |(i, f)| (seed * 1000 + i as u64, f))
+        })
+        .filter(|(_, s)| s.truth.hard_case.is_none())
+        .collect()
+}
+
+// ----------------------------------------------------------------------------- orientation figures
 
 /// A fragment counts as wrong above this mean point distance (the paper's 4 mm).
 pub const WRONG_DISTANCE_MM: f64 = 4.0;
@@ -61,9 +113,9 @@ pub struct FragmentOutcome {
     /// Which cue set the sense.
     pub direction_cue: String,
     /// The figures of each sense cue.
-    pub sense_cues: super::direction::SenseCues,
+    pub sense_cues: sherd::orient::direction::SenseCues,
     /// The vessel family the fragment came from.
-    pub shape: crate::synth::VesselShape,
+    pub shape: sherd::synth::VesselShape,
     /// Milliseconds the orientation took.
     pub elapsed_ms: f64,
 }
@@ -130,7 +182,7 @@ fn fill(outcome: &mut FragmentOutcome, sherd: &SynthSherd, orientation: &Orienta
     let same_sense = if outcome.sense_correct { *axis } else { axis.flipped() };
     outcome.line_point_distance_mm = mean_point_distance_mm(points, &same_sense, truth);
     outcome.flagged = !orientation.verdict.is_oriented();
-    outcome.sense_uncertain = matches!(orientation.verdict, super::Verdict::SenseUncertain { .. });
+    outcome.sense_uncertain = matches!(orientation.verdict, sherd::orient::Verdict::SenseUncertain { .. });
     if let Some(reason) = orientation.verdict.reason() {
         outcome.reason = reason.to_owned();
     }
@@ -236,22 +288,22 @@ pub struct SfsppPiece {
     /// `Pot_C_Piece_01`..`Pot_C_Piece_04`.
     pub name: String,
     /// Both skins' points with normals, in the piece's own scan frame.
-    pub cloud: crate::mesh::Mesh,
+    pub cloud: sherd::mesh::Mesh,
     /// Reference A of `ground_truth/reference_axis_derived.txt`, in the same frame
     /// (derived from the assembled pot, known to about 3 degrees and 2 mm).
-    pub reference: super::Axis,
+    pub reference: sherd::orient::Axis,
 }
 
 /// The four sherds of `folder` (the dataset's `sfspp_pot_C`: `ground_truth/` and
 /// `surfaces_subsample/`), the examples' and tests' one reader of it. An error names the
 /// file or line that is missing or malformed.
-pub fn read_sfspp_pot_c(folder: &std::path::Path) -> crate::Result<Vec<SfsppPiece>> {
-    use crate::mesh::{Point, Vector};
+pub fn read_sfspp_pot_c(folder: &std::path::Path) -> sherd::Result<Vec<SfsppPiece>> {
+    use sherd::mesh::{Point, Vector};
     let reference_path = folder.join("ground_truth/reference_axis_derived.txt");
-    let references = std::fs::read_to_string(&reference_path).map_err(|e| crate::Error::io(&reference_path, e))?;
+    let references = std::fs::read_to_string(&reference_path).map_err(|e| sherd::Error::io(&reference_path, e))?;
     let surfaces = folder.join("surfaces_subsample");
     let mut surface_files: Vec<std::path::PathBuf> = std::fs::read_dir(&surfaces)
-        .map_err(|e| crate::Error::io(&surfaces, e))?
+        .map_err(|e| sherd::Error::io(&surfaces, e))?
         .flatten()
         .map(|entry| entry.path())
         .collect();
@@ -265,51 +317,27 @@ pub fn read_sfspp_pot_c(folder: &std::path::Path) -> crate::Result<Vec<SfsppPiec
                 .lines()
                 .enumerate()
                 .find(|(_, line)| line.starts_with(&format!("{name} ")))
-                .ok_or_else(|| crate::Error::parse(reference_path.display().to_string(), "file", format!("no line for {name}")))?;
+                .ok_or_else(|| sherd::Error::parse(reference_path.display().to_string(), "file", format!("no line for {name}")))?;
             let values: Vec<f64> = line.split_whitespace().skip(1).filter_map(|value| value.parse().ok()).collect();
             if values.len() != 6 {
-                return Err(crate::Error::parse(
+                return Err(sherd::Error::parse(
                     reference_path.display().to_string(),
                     format!("line {}", number + 1),
                     format!("{name}: expected a point and a direction (6 numbers), found {} numbers", values.len()),
                 ));
             }
-            let reference = super::Axis::new(Point::new(values[0], values[1], values[2]), Vector::new(values[3], values[4], values[5]));
+            let reference = sherd::orient::Axis::new(Point::new(values[0], values[1], values[2]), Vector::new(values[3], values[4], values[5]));
             let (mut positions, mut normals) = (Vec::new(), Vec::new());
             for path in surface_files.iter().filter(|p| p.file_name().is_some_and(|f| f.to_string_lossy().starts_with(&format!("{name}_Surface_")))) {
-                let skin = crate::mesh::io::read_mesh(path)?;
-                let skin_normals = skin.normals.ok_or_else(|| crate::Error::parse(path.display().to_string(), "header", "the surface carries no normals"))?;
+                let skin = sherd::mesh::io::read_mesh(path)?;
+                let skin_normals = skin.normals.ok_or_else(|| sherd::Error::parse(path.display().to_string(), "header", "the surface carries no normals"))?;
                 positions.extend(skin.positions);
                 normals.extend(skin_normals);
             }
             if positions.is_empty() {
-                return Err(crate::Error::io(surfaces.join(format!("{name}_Surface_*")), std::io::ErrorKind::NotFound.into()));
+                return Err(sherd::Error::io(surfaces.join(format!("{name}_Surface_*")), std::io::ErrorKind::NotFound.into()));
             }
-            Ok(SfsppPiece { name, cloud: crate::mesh::Mesh::from_points_and_normals(positions, normals), reference })
+            Ok(SfsppPiece { name, cloud: sherd::mesh::Mesh::from_points_and_normals(positions, normals), reference })
         })
         .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_missing_or_malformed_sfspp_folder_is_an_error_naming_the_file_and_line() {
-        let folder = tempfile::tempdir().unwrap();
-        let missing = read_sfspp_pot_c(folder.path()).unwrap_err().to_string();
-        assert!(missing.contains("reference_axis_derived.txt"), "{missing}");
-        std::fs::create_dir_all(folder.path().join("ground_truth")).unwrap();
-        std::fs::create_dir_all(folder.path().join("surfaces_subsample")).unwrap();
-        std::fs::write(
-            folder.path().join("ground_truth/reference_axis_derived.txt"),
-            "# reference A\nPot_C_Piece_01 0 0 0 0 0\n",
-        )
-        .unwrap();
-        let malformed = read_sfspp_pot_c(folder.path()).unwrap_err().to_string();
-        assert!(malformed.contains("line 2") && malformed.contains("found 5 numbers"), "{malformed}");
-        std::fs::write(folder.path().join("ground_truth/reference_axis_derived.txt"), "Pot_C_Piece_01 0 0 0 0 0 1\n").unwrap();
-        let no_surface = read_sfspp_pot_c(folder.path()).unwrap_err().to_string();
-        assert!(no_surface.contains("Pot_C_Piece_01_Surface_*"), "{no_surface}");
-    }
 }
