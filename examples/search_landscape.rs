@@ -73,7 +73,7 @@ fn main() {
                 }
             }
             let blocks = sample_blocks(&landscape.samples);
-            let competitor_t = competing_valleys(&landscape, &blocks, 15.0).iter().map(|(_, s)| s.t_statistic).fold(f64::INFINITY, f64::min);
+            let competitor_t = competing_valleys(&landscape, &blocks, 15.0).iter().map(|c| c.separation.t_statistic).fold(f64::INFINITY, f64::min);
             let list = |values: Vec<String>| values.join(" ");
             println!(
                 "vessel {seed} fragment {index} {:?} sector {:.0} deg: rank {rank}, distances [{}] mm, angles [{}] deg, scores [{}], true valley {truth_cost:.4}, competitor t {competitor_t:.1}, {:.0} ms",

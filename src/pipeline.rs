@@ -215,6 +215,7 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
         let valley = if levelled { (f64::NAN, valley.1) } else { valley };
         let measure_options = MeasureOptions {
             axis_valley_width: valley.1.is_finite().then_some(valley),
+            axis_competitor_reach: orientation.competitor_reach,
             ..options.measure.clone()
         };
         measurements = Some(measure_with_bootstrap_mesh(&mesh, bootstrap_mesh, axis, &measure_options));

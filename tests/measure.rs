@@ -149,6 +149,21 @@ fn a_wide_axis_interval_flags_the_axis() {
 }
 
 #[test]
+fn the_intervals_reach_a_competing_axis_the_orientation_could_not_rule_out() {
+    let sherd = synthetic_sherd(0, &options(SherdPart::Rim));
+    let bootstrap = BootstrapOptions { samples: 6, ..Default::default() };
+    let alone = measure(&sherd.mesh, &sherd.truth.axis, &MeasureOptions { bootstrap: bootstrap.clone(), ..Default::default() });
+    let reach = sherd::orient::CompetitorReach { angle_deg: 30.0, distance_mm: 60.0 };
+    let with_competitor =
+        measure(&sherd.mesh, &sherd.truth.axis, &MeasureOptions { bootstrap, axis_competitor_reach: Some(reach), ..Default::default() });
+    let (angle, distance) = (alone.axis_angle_interval_deg.unwrap()[1], alone.axis_distance_interval_mm.unwrap()[1]);
+    assert!(angle < 30.0 && distance < 60.0, "{angle} deg, {distance} mm");
+    let (angle, distance) = (with_competitor.axis_angle_interval_deg.unwrap()[1], with_competitor.axis_distance_interval_mm.unwrap()[1]);
+    assert!(angle >= 30.0 && distance >= 60.0, "{angle} deg, {distance} mm");
+    assert!(with_competitor.axis_uncertain, "{:?}", with_competitor.axis_doubts);
+}
+
+#[test]
 fn degenerate_mesh_is_reported_not_measured() {
     let mesh = Mesh::new(vec![Point::origin(); 4], vec![]);
     let m = measure(&mesh, &Axis::z(), &MeasureOptions::default());

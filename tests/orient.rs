@@ -428,6 +428,34 @@ fn no_ok_axis_is_grossly_wrong_on_the_refinement_corpus() {
     assert!(wrong.is_empty(), "ok axes more than 15 deg off or upside down: {wrong:#?}");
 }
 
+/// An answer whose landscape holds another valley the fragment does not rule out says so
+/// (a doubt) and carries how far that valley lies, for its intervals to reach; an answer
+/// without such a doubt carries none.
+#[test]
+fn an_unresolved_competitor_is_carried_to_the_intervals() {
+    use sherd::synth::{generate_vessel, VesselOptions};
+    let options = VesselOptions { fragment_count: 34, random_motion: true, ..Default::default() };
+    let vessel = generate_vessel(1, &options);
+    let mut carried = 0;
+    for (k, sherd) in vessel.fragments.iter().enumerate().filter(|(_, s)| s.truth.hard_case.is_none()) {
+        let orientation = orient_automatic(&sherd.mesh, &OrientOptions::default()).unwrap();
+        if !orientation.verdict.has_axis_line() {
+            continue;
+        }
+        let doubt = orientation.doubts.iter().find(|d| d.starts_with("another axis"));
+        match (doubt, orientation.competitor_reach) {
+            (Some(doubt), Some(reach)) => {
+                let doubted_deg: f64 = doubt.split_whitespace().nth(2).unwrap().parse().unwrap();
+                assert!(reach.angle_deg >= doubted_deg - 0.5 && reach.distance_mm > 0.0, "fragment {k}: {reach:?} against {doubt}");
+                carried += 1;
+            }
+            (None, None) => {}
+            (doubt, reach) => panic!("fragment {k}: doubt {doubt:?} but reach {reach:?}"),
+        }
+    }
+    assert!(carried >= 1, "no fragment of vessel 1 had an unresolved competitor: the test tests nothing");
+}
+
 /// A base's foot is a level circle about the axis, like a rim. Two base pieces whose wall
 /// rises from a strip of underside too small to count as a floor (2-3% of the surface)
 /// were oriented upside down, their level foot read as a level rim; the strip now vetoes

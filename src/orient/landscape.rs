@@ -78,10 +78,22 @@ fn separation_from(samples: &RevolutionSamples, blocks: &[Option<usize>], best_l
     Separation { mean_difference: mean, t_statistic, blocks: n }
 }
 
+/// A valley of the landscape other than the best: its axis, how far its line turns from
+/// the best's, and how much better the best fits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CompetingValley {
+    /// The valley's axis.
+    pub axis: Axis,
+    /// Angle between its line and the best valley's, degrees.
+    pub angle_deg: f64,
+    /// How much better the best valley's axis fits, block by block.
+    pub separation: Separation,
+}
+
 /// The competitors of the landscape's best valley: the other valleys farther from it than
 /// `min_angle_deg` (nearer ones lie in the reach of the refinement), best first, with
 /// their separation from the best.
-pub fn competing_valleys(landscape: &Landscape, blocks: &[Option<usize>], min_angle_deg: f64) -> Vec<(f64, Separation)> {
+pub fn competing_valleys(landscape: &Landscape, blocks: &[Option<usize>], min_angle_deg: f64) -> Vec<CompetingValley> {
     let Some(best) = landscape.valleys.first() else { return Vec::new() };
     let best_axis = best.axis(&landscape.samples);
     landscape
@@ -90,8 +102,12 @@ pub fn competing_valleys(landscape: &Landscape, blocks: &[Option<usize>], min_an
         .skip(1)
         .filter_map(|valley| {
             let axis = valley.axis(&landscape.samples);
-            let angle = axis.line_angle_to_deg(&best_axis);
-            (angle > min_angle_deg).then(|| (angle, separation(&landscape.samples, blocks, &best_axis, &axis, landscape.loss_scale_mm)))
+            let angle_deg = axis.line_angle_to_deg(&best_axis);
+            (angle_deg > min_angle_deg).then(|| CompetingValley {
+                axis,
+                angle_deg,
+                separation: separation(&landscape.samples, blocks, &best_axis, &axis, landscape.loss_scale_mm),
+            })
         })
         .collect()
 }

@@ -108,6 +108,10 @@ pub struct Orientation {
     pub angle_uncertainty_deg: f64,
     /// The same for a move of the axis across itself near the sherd, millimetres.
     pub position_uncertainty_mm: f64,
+    /// How far the valleys of the search that the fragment does not rule out lie from
+    /// the axis: an answer's intervals reach them. `None` when every other valley fits
+    /// clearly worse, and for a manual axis.
+    pub competitor_reach: Option<CompetitorReach>,
     /// Vertices of the working copy kept as the surface of revolution.
     pub kept_vertex_count: usize,
     /// The details, for `--json` and the archaeologist's record.
@@ -262,8 +266,8 @@ pub fn orient_automatic_with_decimated(mesh: &Mesh, decimated: Option<&Mesh>, op
     report.inlier_fraction = best.fit.inlier_share;
     let blocks = landscape::sample_blocks(&landscape.samples);
     let competitors = landscape::competing_valleys(&landscape, &blocks, MIN_COMPETITOR_ANGLE_DEG);
-    let closest = competitors.iter().copied().min_by(|a, b| a.1.t_statistic.total_cmp(&b.1.t_statistic));
-    report.competitor = closest.map(|(angle, separation)| (angle, separation.t_statistic));
+    let closest = competitors.iter().min_by(|a, b| a.separation.t_statistic.total_cmp(&b.separation.t_statistic));
+    report.competitor = closest.map(|c| (c.angle_deg, c.separation.t_statistic));
     report.position_hold = landscape::position_hold(&landscape.samples, &axis, POSITION_PROBE_MM, landscape.loss_scale_mm);
     let (angle_uncertainty_deg, position_uncertainty_mm) = landscape::valley_width(&landscape.samples, &blocks, &axis, landscape.loss_scale_mm);
     lap("landscape verdict", &mut clock);
@@ -288,11 +292,12 @@ pub fn orient_automatic_with_decimated(mesh: &Mesh, decimated: Option<&Mesh>, op
     let sense_verdict = sense_inputs.verdict(&evidence);
     let mut doubts = Vec::new();
     let mut crossing_unresolved = None;
-    let unresolved: Vec<&(f64, landscape::Separation)> = competitors.iter().filter(|(_, s)| !(s.t_statistic >= MIN_SEPARATION_T)).collect();
-    let describe = |(angle, separation): &(f64, landscape::Separation)| {
+    let unresolved: Vec<&landscape::CompetingValley> = competitors.iter().filter(|c| !(c.separation.t_statistic >= MIN_SEPARATION_T)).collect();
+    let competitor_reach = CompetitorReach::of(&unresolved, &axis, &lines.points);
+    let describe = |competitor: &&landscape::CompetingValley| {
         format!(
-            "another axis {angle:.0} degrees away fits the piece almost as well (the best fits better in {} blocks of the piece by t = {:.1}, at least {MIN_SEPARATION_T} wanted)",
-            separation.blocks, separation.t_statistic
+            "another axis {:.0} degrees away fits the piece almost as well (the best fits better in {} blocks of the piece by t = {:.1}, at least {MIN_SEPARATION_T} wanted)",
+            competitor.angle_deg, competitor.separation.blocks, competitor.separation.t_statistic
         )
     };
     // An axis across the best one makes the piece a surface of revolution about the other
@@ -302,12 +307,12 @@ pub fn orient_automatic_with_decimated(mesh: &Mesh, decimated: Option<&Mesh>, op
     let level_lip = evidence.cues.level_edge.abs() >= options.thresholds.min_sense_confidence;
     // A crossing competitor the best still beats at the 5% level (though not at 1%) leaves
     // an answer to give with its doubt; below that the two are a coin toss.
-    let undecided = |(angle, separation): &&&(f64, landscape::Separation)| {
-        *angle > verdict::CROSSING_COMPETITOR_ANGLE_DEG && !(separation.t_statistic >= MIN_CROSSING_SEPARATION_T)
+    let undecided = |competitor: &&&landscape::CompetingValley| {
+        competitor.angle_deg > verdict::CROSSING_COMPETITOR_ANGLE_DEG && !(competitor.separation.t_statistic >= MIN_CROSSING_SEPARATION_T)
     };
     if let Some(crossing) = unresolved.iter().find(undecided).filter(|_| !level_lip) {
         crossing_unresolved = Some(describe(crossing));
-    } else if let Some(nearest) = unresolved.iter().min_by(|a, b| a.1.t_statistic.total_cmp(&b.1.t_statistic)) {
+    } else if let Some(nearest) = unresolved.iter().min_by(|a, b| a.separation.t_statistic.total_cmp(&b.separation.t_statistic)) {
         doubts.push(describe(nearest));
     }
     let line_verdict = if !best.fit.position_fixed || report.normal_spread < options.thresholds.min_normal_spread {
@@ -352,10 +357,38 @@ pub fn orient_automatic_with_decimated(mesh: &Mesh, decimated: Option<&Mesh>, op
         doubts,
         angle_uncertainty_deg,
         position_uncertainty_mm,
+        competitor_reach,
         kept_vertex_count,
         report,
         sense_inputs: Some(std::sync::Arc::new(sense_inputs)),
     })
+}
+
+/// The farthest of the competing axes the fragment does not rule out (the best fits
+/// better by less than the verdict's t), as an angle and as the paper's mean point
+/// distance between the lines. The bootstrap and the valley's width measure the spread
+/// about the best valley; where another valley fits the piece about as well, the axis
+/// may lie there, and a 95% interval that stops short of it claims what the piece does
+/// not show.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CompetitorReach {
+    /// The largest angle between an unresolved competitor's line and the axis, degrees.
+    pub angle_deg: f64,
+    /// The largest mean point distance between an unresolved competitor's line and the
+    /// axis's, up and down aside, millimetres.
+    pub distance_mm: f64,
+}
+
+impl CompetitorReach {
+    /// The reach of `unresolved` competitors from `axis`, over the fragment's `points`;
+    /// `None` when there are none.
+    fn of(unresolved: &[&landscape::CompetingValley], axis: &Axis, points: &[Point]) -> Option<Self> {
+        let line_distance_mm = |other: &Axis| mean_point_distance_mm(points, other, axis).min(mean_point_distance_mm(points, &other.flipped(), axis));
+        unresolved.iter().map(|c| CompetitorReach { angle_deg: c.angle_deg, distance_mm: line_distance_mm(&c.axis) }).reduce(|a, b| CompetitorReach {
+            angle_deg: a.angle_deg.max(b.angle_deg),
+            distance_mm: a.distance_mm.max(b.distance_mm),
+        })
+    }
 }
 
 /// What the sense cues read, kept with an automatic orientation so that the sense can be
@@ -512,6 +545,7 @@ fn unoriented(mesh: &Mesh, reason: String, report: OrientReport, kept: usize) ->
         doubts: Vec::new(),
         angle_uncertainty_deg: f64::INFINITY,
         position_uncertainty_mm: f64::INFINITY,
+        competitor_reach: None,
         kept_vertex_count: kept,
         report,
         sense_inputs: None,
@@ -666,6 +700,7 @@ pub fn orient_from_three_points(mesh: &Mesh, points: [Point; 3], options: &Manua
         verdict: Verdict::Oriented,
         doubts: Vec::new(),
         angle_uncertainty_deg: f64::NAN,
+        competitor_reach: None,
         position_uncertainty_mm: f64::NAN,
         kept_vertex_count,
         report,

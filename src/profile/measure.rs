@@ -40,6 +40,10 @@ pub struct MeasureOptions {
     /// turn (an axis levelled by its tangent plane, whose turn the level edge fixes)
     /// widens the position interval alone.
     pub axis_valley_width: Option<(f64, f64)>,
+    /// How far the competing axes the orientation could not rule out lie
+    /// ([`crate::orient::CompetitorReach`]): the intervals reach them, since the axis may
+    /// lie in their valley rather than the best one's.
+    pub axis_competitor_reach: Option<crate::orient::CompetitorReach>,
 }
 
 impl Default for MeasureOptions {
@@ -49,6 +53,7 @@ impl Default for MeasureOptions {
             bootstrap: BootstrapOptions::default(),
             wall_thickness_stations: 24,
             axis_valley_width: None,
+            axis_competitor_reach: None,
         }
     }
 }
@@ -442,6 +447,10 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
                 let distance_mm = if angle_deg.is_finite() { move_mm.hypot(angle_deg.to_radians() * along_mm) } else { move_mm };
                 widen(&mut measurements.axis_angle_interval_deg, angle_deg);
                 widen(&mut measurements.axis_distance_interval_mm, distance_mm);
+            }
+            if let Some(reach) = options.axis_competitor_reach {
+                widen(&mut measurements.axis_angle_interval_deg, reach.angle_deg);
+                widen(&mut measurements.axis_distance_interval_mm, reach.distance_mm);
             }
             // The vessel's deformation, which the bootstrap does not resample, shows as
             // the axis's moves when a quarter of the arc is left out: their jackknife
