@@ -4,7 +4,7 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 
 use sherd::draw::{DrawOptions, Drawing, Format, Style};
-use sherd::mesh::occlusion::{ambient_occlusion, OcclusionOptions};
+use sherd::draw::occlusion::{ambient_occlusion, OcclusionOptions};
 use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
 
 fn bench_draw(c: &mut Criterion) {

@@ -7,7 +7,7 @@
 use std::time::Instant;
 
 use sherd::draw::{DrawOptions, Drawing, Format, Style};
-use sherd::mesh::occlusion::{ambient_occlusion, OcclusionOptions};
+use sherd::draw::occlusion::{ambient_occlusion, OcclusionOptions};
 use sherd::profile::section::{most_informative_angle, profile_section};
 use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
 

@@ -8,7 +8,7 @@ use std::process::Command;
 use std::time::Instant;
 
 use sherd::mesh::io::{read_mesh, write_ply, PlyEncoding};
-use sherd::mesh::occlusion::{ambient_occlusion, OcclusionOptions};
+use sherd::draw::occlusion::{ambient_occlusion, OcclusionOptions};
 
 fn shared_data() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/data")

@@ -21,7 +21,7 @@ use crate::draw::stipple::stipple_dots;
 use crate::draw::view::{crease_edges, outline_loops, render_view, visible_crease_lines, OcclusionField, Shading, Surface, View};
 use crate::draw::{Annotations, DrawOptions, Placement, RegularityKind, SectionFill};
 use crate::mesh::normals::{compute_vertex_normals, NormalWeighting};
-use crate::mesh::occlusion::near_and_far_light;
+use super::occlusion::near_and_far_light;
 use crate::mesh::{planar_length, Mesh};
 use crate::orient::Axis;
 use crate::profile::measure::{measure, MeasureOptions, Measurements};
@@ -312,7 +312,7 @@ impl PlacedView {
         (row - k..=row + k).filter(|r| (0..height).contains(r)).any(|r| {
             (column - k..=column + k)
                 .filter(|c| (0..width).contains(c))
-                .any(|c| self.view.buffer.face[(r * width + c) as usize] != crate::mesh::raster::NO_FACE)
+                .any(|c| self.view.buffer.face[(r * width + c) as usize] != super::raster::NO_FACE)
         })
     }
 }

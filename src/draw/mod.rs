@@ -14,8 +14,10 @@
 pub mod font;
 mod layout;
 pub mod model;
+pub mod occlusion;
 pub mod png;
 pub mod postscript;
+pub mod raster;
 pub mod stipple;
 pub mod svg;
 mod view;
@@ -24,7 +26,7 @@ use std::path::Path;
 
 pub use model::{bounds_overlap, Anchor, Bounds, Dots, Drawing, Element, Group, Image, Segment, Stroke, Text};
 
-use crate::mesh::occlusion::OcclusionOptions;
+use occlusion::OcclusionOptions;
 use crate::mesh::Mesh;
 use crate::orient::Axis;
 use crate::profile::measure::Measurements;

@@ -7,7 +7,7 @@
 use nalgebra::Rotation3;
 use rayon::prelude::*;
 
-use crate::mesh::raster::{barycentric, rasterize_parallel, OrthographicCamera, ZBuffer, NO_FACE};
+use super::raster::{barycentric, rasterize_parallel, OrthographicCamera, ZBuffer, NO_FACE};
 use crate::mesh::topology::Topology;
 use crate::mesh::{segment_distance, Mesh, Point, Vector};
 use crate::profile::regularity::ColorMap;
@@ -23,7 +23,7 @@ pub(crate) struct Surface<'a> {
     pub regularity: Option<(&'a [f32], &'a ColorMap)>,
 }
 
-/// Ambient light per vertex in two parts (see [`crate::mesh::occlusion::near_and_far_light`]):
+/// Ambient light per vertex in two parts (see [`super::occlusion::near_and_far_light`]):
 /// a pixel's light is `near` times `far_factor` smoothed over the view, stretched by
 /// `(light - low) / span` to [0, 1].
 pub(crate) struct OcclusionField {

@@ -6,7 +6,7 @@
 
 use rayon::prelude::*;
 
-use crate::mesh::raster::{floor_to_i64, rasterize_into, OrthographicCamera, ZBuffer};
+use super::raster::{floor_to_i64, rasterize_into, OrthographicCamera, ZBuffer};
 use crate::mesh::{Mesh, Vector};
 use crate::{Error, Result};
 
