@@ -33,7 +33,7 @@ use rayon::prelude::*;
 use sherd::mesh::{segment_distance, Point};
 use evaluation::refinement_corpus;
 use sherd::orient::{mean_point_distance_mm, Axis};
-use sherd::refine::profile::SplineProfile;
+use sherd::refine::superposition::SplineProfile;
 use sherd::statistics::nearest_rank_quantile;
 use sherd::synth::truth::SurfaceKind;
 use sherd::synth::SynthSherd;

@@ -235,7 +235,7 @@ fn bad_options_are_reported() {
         ..Default::default()
     };
     assert!(refine(&moved, &start, &pareto).unwrap_err().to_string().contains("at least 1"));
-    let polynomial = RefineOptions { profile_method: sherd::refine::profile::ProfileMethod::Polynomial { degree: 0 }, ..Default::default() };
+    let polynomial = RefineOptions { profile_method: sherd::refine::superposition::ProfileMethod::Polynomial { degree: 0 }, ..Default::default() };
     assert!(refine(&moved, &start, &polynomial).unwrap_err().to_string().contains("degree"));
 }
 

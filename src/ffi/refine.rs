@@ -12,7 +12,7 @@ use super::panic::guard;
 use super::pointers::{SizedStruct, borrow, host_slice_mut, require, write_out, write_sized};
 use super::status::SherdStatus;
 use crate::refine::pareto::ParetoOptions;
-use crate::refine::profile::{ProfileMethod, ProfileMethodKind};
+use crate::refine::superposition::{ProfileMethod, ProfileMethodKind};
 use crate::refine::{EdgeChoice, MAX_SEARCH_BOUND_DEG, RefineOptions, Refinement};
 
 /// A refined axis with its report and, for the Pareto criterion, the front. Created by

@@ -3,7 +3,7 @@
 //!
 //! * [`circles`]: horizontal circles, radius variance (Eq. 2);
 //! * [`pareto`]: circle centres and residuals on a Pareto front (Eq. 3-4);
-//! * [`profile`]: vertical profile superposition (Eq. 5-6);
+//! * [`superposition`]: vertical profile superposition (Eq. 5-6);
 //! * [`tangent`]: tangent plane to rim or base (Eq. 7);
 //!
 //! with Chernov's circle fits ([`circle_fit`]), the sections they share ([`sections`]),
@@ -20,9 +20,9 @@ pub mod flat_face;
 pub mod normal_line_placement;
 pub mod objective;
 pub mod pareto;
-pub mod profile;
 pub mod sections;
 pub mod sector_jackknife;
+pub mod superposition;
 pub mod tangent;
 pub mod uncertainty;
 
@@ -33,7 +33,7 @@ use serde::{Deserialize, Serialize};
 pub use edges::{detect_edges, detect_edges_over, EDGE_LEVEL_FRACTION};
 pub use objective::FreeParameters;
 pub use pareto::{ParetoChoice, ParetoChoiceKind, ParetoOptions, ParetoPoint};
-pub use profile::{ProfileMethod, ProfileMethodKind};
+pub use superposition::{ProfileMethod, ProfileMethodKind};
 pub use sections::Surface;
 pub use tangent::{Edge, EdgeChoice};
 
@@ -319,7 +319,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
             }
         }
         Criterion::Profile => {
-            let objective = profile::ProfileObjective { surface: &surface, method: options.profile_method };
+            let objective = superposition::ProfileObjective { surface: &surface, method: options.profile_method };
             run_guarded(&objective, start, &settings)?
         }
         Criterion::Tangent => {
@@ -495,7 +495,7 @@ const PROFILE_MAX_SKIN_VERTICES: usize = 3000;
 /// parameters and the iterations; `None` when it fails or keeps the start.
 fn profile_from_start(surface: &PreparedSurface, options: &RefineOptions, settings: &SearchSettings) -> Option<(AxisParameters, u64)> {
     let thinned = surface.with_skin_vertices_at_most(PROFILE_MAX_SKIN_VERTICES);
-    let objective = profile::ProfileObjective { surface: &thinned, method: options.profile_method };
+    let objective = superposition::ProfileObjective { surface: &thinned, method: options.profile_method };
     let (by_profile, _, _, iterations, kept) = run_guarded(&objective, [0.0; 4], settings).ok()?;
     (!kept).then_some((by_profile, iterations))
 }

@@ -6,8 +6,8 @@
 use rand::Rng;
 use rayon::prelude::*;
 
-use super::profile::VesselProfile;
-use super::revolve::ParamGrid;
+use super::shape::VesselProfile;
+use super::shell::ParamGrid;
 use crate::mesh::{Point, Vector};
 
 /// Number of sine waves in each seed's roughness field.

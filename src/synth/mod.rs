@@ -14,8 +14,8 @@ pub mod colour;
 pub mod deform;
 pub mod fracture;
 pub mod motion;
-pub mod profile;
-pub mod revolve;
+pub mod shape;
+pub mod shell;
 pub mod truth;
 pub mod write;
 
@@ -24,7 +24,7 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
 pub use deform::Deformation;
-pub use profile::{RimForm, VesselProfile, VesselShape};
+pub use shape::{RimForm, VesselProfile, VesselShape};
 pub use truth::{GroundTruth, HardCase, RigidMotion, SherdPart, SurfaceKind, VesselTruth};
 pub use write::{read_truth, write_sherd};
 
@@ -33,7 +33,7 @@ use crate::mesh::{Mesh, Point, Vector};
 use crate::axis::Axis;
 use colour::ClayColour;
 use fracture::{clean_mask, mid_surface_point, RoughVoronoi};
-use revolve::{build_shell, ParamGrid, Shell};
+use shell::{build_shell, ParamGrid, Shell};
 
 /// How to make one synthetic sherd.
 #[derive(Clone, Debug, PartialEq)]

@@ -5,8 +5,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::deform::Deformation;
-pub use super::profile::distance_to_polyline;
-use super::profile::{RimForm, VesselShape};
+pub use super::shape::distance_to_polyline;
+use super::shape::{RimForm, VesselShape};
 use crate::mesh::Point;
 use crate::axis::{Axis, AxisRecord};
 

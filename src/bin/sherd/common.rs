@@ -13,7 +13,7 @@ use sherd::orient::{Axis, AxisRecord};
 use sherd::pipeline::{PipelineOptions, RecordStatus};
 use sherd::refine::circle_fit::CircleFitMethod;
 use sherd::refine::pareto::{ParetoChoice, ParetoChoiceKind, ParetoOptions};
-use sherd::refine::profile::{ProfileMethod, ProfileMethodKind};
+use sherd::refine::superposition::{ProfileMethod, ProfileMethodKind};
 use sherd::refine::{Criterion, EdgeChoice, RefineOptions, Surface};
 use sherd::vocabulary::{Vocabulary, or_list};
 

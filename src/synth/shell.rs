@@ -16,7 +16,7 @@
 use rayon::prelude::*;
 
 use super::deform::Deformation;
-use super::profile::VesselProfile;
+use super::shape::VesselProfile;
 use super::truth::SurfaceKind;
 use crate::mesh::Point;
 
