@@ -13,13 +13,17 @@
 //! circles' and the profile's directions), and never returns an axis its own criterion
 //! rates worse than the start.
 
+mod averaging;
+mod choice;
 pub mod circle_fit;
 pub mod circles;
 pub mod edges;
 pub mod flat_face;
+mod levelling;
 pub mod normal_line_placement;
 pub mod objective;
 pub mod pareto;
+mod placement;
 pub mod sections;
 pub mod sector_jackknife;
 pub mod superposition;
@@ -40,9 +44,13 @@ pub use tangent::{Edge, EdgeChoice};
 use crate::mesh::Mesh;
 use crate::orient::Axis;
 use crate::{Error, Result};
-use edges::{detect_edges_levelled, face_for_levelling, flatter_by_plane, reaches_bound, Levelling, EDGE_LEVEL_TOLERANCE_MM};
-use objective::{minimize, Minimum, Objective, SearchSettings};
-use sections::{AxisParameters, PreparedSurface};
+use objective::{run_guarded, CriterionRun, Objective, SearchSettings};
+use averaging::{averaged_with_profile, profile_from_start};
+pub use choice::chosen_criterion;
+pub(crate) use choice::{choose_criterion, Choice};
+pub(crate) use placement::{place_where_sections_allow, place_with, radial_curvature, search_shifts, MIN_PLACING_CURVATURE};
+use placement::{usable_section_count, PLACING_PROBE_MM};
+use sections::PreparedSurface;
 
 crate::vocabulary! {
     /// The refinement criterion.
@@ -273,7 +281,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
     let mut flag = None;
     let mut flat_face = None;
     let mut averaged_reason = None;
-    let (parameters, start_cost, cost, iterations, kept_start) = match method {
+    let CriterionRun { parameters, start_cost, cost, iterations, kept_start } = match method {
         Criterion::Circles | Criterion::Auto => {
             let objective = circles::CirclesObjective::new(&surface);
             let start_cost = objective.value(&start);
@@ -281,7 +289,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                 // Asked to choose, `refine` says the fragment gives it nothing to work
                 // with rather than failing: the caller keeps the pre-orientation, flagged.
                 flag = Some(nothing_to_refine_by());
-                (start, start_cost, start_cost, 0, true)
+                CriterionRun { parameters: start, start_cost, cost: start_cost, iterations: 0, kept_start: true }
             } else {
                 // Asked to choose, the profile criterion runs beside Eq. 2 (on the other
                 // core where there is one: neither needs the other's result).
@@ -291,10 +299,10 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                     false => (run_guarded(&objective, start, &settings), None),
                 };
                 let mut result = result?;
-                if !result.4 {
+                if !result.kept_start {
                     let averaged = by_profile.and_then(|by_profile| averaged_with_profile(&objective, &result, by_profile, &settings));
                     if let Some(averaged) = averaged {
-                        result = (averaged.parameters, result.1, averaged.cost, result.3 + averaged.iterations, false);
+                        result = CriterionRun { parameters: averaged.parameters, cost: averaged.cost, iterations: result.iterations + averaged.iterations, kept_start: false, ..result };
                         averaged_reason = Some(format!(
                             "no level rim or base: horizontal circles (Eq. 2) and profile superposition (Eq. {}), {:.2} degrees apart, their directions averaged and {}",
                             match options.profile_method {
@@ -309,7 +317,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                         ));
                     }
                 }
-                let curvature = radial_curvature(&objective, &result.0);
+                let curvature = radial_curvature(&objective, &result.parameters);
                 if curvature < MIN_PLACING_CURVATURE {
                     flag = Some(format!(
                         "the skins barely fix the axis's position: moving it {PLACING_PROBE_MM} mm nearer to or farther from the pre-oriented axis raises Eq. 2 {curvature:.1}-fold (at least {MIN_PLACING_CURVATURE} wanted)"
@@ -324,95 +332,9 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
         }
         Criterion::Tangent => {
             let edge = edge.expect("the tangent criterion always has an edge");
-            let tangent = tangent::TangentObjective::new(&surface, edge, options.tangent_tolerance_mm, options.vertical_section_count);
-            let tangent_start = tangent.value(&start);
-            let (tilted, tangent_cost, tangent_iterations, tangent_kept) = if options.free == FreeParameters::ShiftsOnly {
-                (start, tangent_start, 0, true)
-            } else {
-                // The detection levelled the edge from this start with these settings.
-                let Levelling { minimum: levelled, face } = match levelled_by_detection {
-                    Some(levelled) => levelled,
-                    None => {
-                        let levelled = tangent::level_edge(
-                            &surface,
-                            edge,
-                            options.tangent_tolerance_mm,
-                            options.vertical_section_count,
-                            start,
-                            &settings,
-                            None,
-                        )?;
-                        let face = face_for_levelling(&surface, options, edge, &levelled.parameters);
-                        let flatter = (edge == Edge::Rim && face.is_none()).then(|| {
-                            let at_levelled = tangent::edge_evidence(&surface, edge, EDGE_LEVEL_TOLERANCE_MM, options.vertical_section_count, &levelled.parameters);
-                            flatter_by_plane(&surface, options, edge, &levelled, &at_levelled)
-                        });
-                        Levelling { minimum: flatter.flatten().map_or(levelled, |(_, polished)| polished), face }
-                    }
-                };
-                // Never worse than the start by Eq. 7 itself.
-                let (mut tilted, mut cost, iterations, kept) = if levelled.value <= tangent_start || !tangent_start.is_finite() {
-                    (levelled.parameters, levelled.value, levelled.iterations, false)
-                } else {
-                    (start, tangent_start, levelled.iterations, true)
-                };
-                // A flat underside (or a floor's flat face) holds the tilts better than its
-                // sections' extremes.
-                if let Some(face) = face {
-                    tilted = [face.tilts[0], face.tilts[1], tilted[2], tilted[3]];
-                    flat_face = Some(face);
-                } else if edge == Edge::Rim && !kept {
-                    // Eq. 7 and the edge's tests keep the paper's 12 vertical sections;
-                    // the rim's plane is fitted through as many as the mesh resolves
-                    // (`tangent::plane_section_count`), each extreme one more sample of
-                    // the short arc's sagitta, which alone fixes its tilt about its chord.
-                    // Not where it never beats the start by Eq. 7, nor where it turns the
-                    // levelled axis by more than `MAX_RIM_PLANE_TURN_DEG`.
-                    let sections = tangent::plane_section_count(&surface, edge, options.vertical_section_count);
-                    let levelled = Minimum { parameters: tilted, value: cost, iterations };
-                    let polished = tangent::level_by_plane(&surface, edge, options.tangent_tolerance_mm, sections, &levelled)
-                        .map(|polished| (polished.parameters, tangent.value(&polished.parameters)))
-                        .filter(|(_, polished_cost)| *polished_cost <= tangent_start || !tangent_start.is_finite())
-                        .filter(|(parameters, _)| (parameters[0] - tilted[0]).hypot(parameters[1] - tilted[1]) <= MAX_RIM_PLANE_TURN_DEG.to_radians());
-                    if let Some((parameters, polished_cost)) = polished {
-                        (tilted, cost) = (parameters, polished_cost);
-                    }
-                }
-                // The plane of level extremes and a flat underside are not bounded: an
-                // axis they carry to or past the bound lies where the search was told
-                // not to look.
-                if reaches_bound(&tilted, bound) {
-                    flag = Some(format!(
-                        "the tangent plane turned the axis {:.1} degrees from the start, at or past the search bound ({} degrees): the start, or the {edge:?} taken as level, is off",
-                        tilted[0].hypot(tilted[1]).to_degrees(),
-                        options.search_bound_deg
-                    ));
-                }
-                (tilted, cost, iterations, kept)
-            };
-            let placed = match options.tangent_places_by_circles {
-                false => None,
-                true if std::ptr::eq(mesh, placement_mesh) => place_by_circles(&circles::CirclesObjective::new(&surface), tilted, &settings),
-                true => {
-                    // The copy's own start frame (its centroid differs a little), then back.
-                    let tilted_axis = surface.axis_of(&tilted);
-                    validate(placement_mesh, &tilted_axis, options)?;
-                    let placement = PreparedSurface::new(placement_mesh, &tilted_axis, options.surface, options.section_count)?;
-                    place_by_circles(&circles::CirclesObjective::new(&placement), [0.0; 4], &settings)
-                        .map(|(placed, iterations)| (surface.parameters_of(&placement.axis_of(&placed)), iterations))
-                }
-            };
-            // A floor with only the turn of its foot gives Eq. 2 no sections to use; its
-            // normals still meet the axis. Not a rim's: the vessel's ovality is largest
-            // there and turns its normals off the axis (by a millimetre or two at the
-            // axis on the synthetic rims), while the base keeps its shape on the wheel.
-            let placed = placed.or_else(|| {
-                let by_normals = (options.tangent_places_by_circles && edge == tangent::Edge::Base)
-                    .then(|| normal_line_placement::place_by_normal_lines(mesh, &surface, tilted));
-                by_normals.flatten().map(|placement| (placement.parameters, 0))
-            });
-            let placed = placed.unwrap_or((tilted, 0));
-            (placed.0, tangent_start, tangent_cost, tangent_iterations + placed.1, tangent_kept)
+            let levelled = levelling::level_and_place(mesh, placement_mesh, &surface, options, edge, levelled_by_detection, &settings)?;
+            (flag, flat_face) = (levelled.flag, levelled.flat_face);
+            levelled.run
         }
         Criterion::Pareto => {
             let search = pareto::search(&surface, [0.0, 0.0], bound, &options.pareto).ok_or_else(|| {
@@ -435,7 +357,7 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
                 (true, Some(s)) => (s.parameters, s.circle_residual_mm2),
                 _ => (chosen.parameters, chosen.circle_residual_mm2),
             };
-            (parameters, start_cost, cost, search.evaluations as u64, start_dominates)
+            CriterionRun { parameters, start_cost, cost, iterations: search.evaluations as u64, kept_start: start_dominates }
         }
     };
     let refined = surface.axis_of(&parameters);
@@ -478,302 +400,11 @@ pub fn refine_placing_on(mesh: &Mesh, placement_mesh: &Mesh, axis: &Axis, option
     Ok(Refinement { axis: refined, report, pareto_front, pareto_chosen })
 }
 
-/// Largest angle between the axes of the circles criterion and of the profile
-/// superposition that [`averaged_with_profile`] averages, degrees: farther apart, one of
-/// them at least has run off (on the refinement corpus the pairs 6-16 degrees apart
-/// averaged to axes 2.7-7.6 degrees off).
-const MAX_CRITERIA_DISAGREEMENT_DEG: f64 = 5.0;
-
-/// At most this many skin vertices carry the profile criterion that [`Criterion::Auto`]
-/// averages with Eq. 2 (every k-th skin vertex): the deformation, not the count, limits
-/// what a fragment's profile says about its axis, and on the 10k-vertex body sherd of
-/// `benches/refine.rs` the profile search took 177 ms on all 8,000 skin vertices.
-const PROFILE_MAX_SKIN_VERTICES: usize = 3000;
-
-/// The profile superposition (Eq. 5 or 6, [`ProfileMethod`]) minimised from the start of
-/// `surface` over at most [`PROFILE_MAX_SKIN_VERTICES`] of its skin vertices: the
-/// parameters and the iterations; `None` when it fails or keeps the start.
-fn profile_from_start(surface: &PreparedSurface, options: &RefineOptions, settings: &SearchSettings) -> Option<(AxisParameters, u64)> {
-    let thinned = surface.with_skin_vertices_at_most(PROFILE_MAX_SKIN_VERTICES);
-    let objective = superposition::ProfileObjective { surface: &thinned, method: options.profile_method };
-    let (by_profile, _, _, iterations, kept) = run_guarded(&objective, [0.0; 4], settings).ok()?;
-    (!kept).then_some((by_profile, iterations))
-}
-
-/// The circles criterion's result `circles_result` (Eq. 2 minimised from the start, as
-/// [`run_guarded`] gives it) with its direction averaged with the profile criterion's
-/// `by_profile` (its parameters and iterations, [`profile_from_start`]) and placed again by
-/// Eq. 2 (two shifts) where Eq. 2 holds it (see [`MIN_AVERAGED_PLACING_HOLD`]), otherwise
-/// turned about the circles' axis where it crosses the fragment's centroid height. `None`
-/// when the two lie more than [`MAX_CRITERIA_DISAGREEMENT_DEG`] apart, or when the averaged
-/// axis's Eq. 2 is worse than the start's.
-///
-/// On a fragment with no level rim or base the two criteria read different evidence: Eq. 2
-/// the horizontal sections' circles, the profile criterion the vertical sections' shape.
-/// The vessel's deformation misleads them differently (the ovality moves a short arc's
-/// circle centres, the wobble bends its profiles), so their errors partly cancel. On the
-/// refinement corpus (`examples/refine_accuracy.rs`) the average brings more fragments
-/// within 0.3 degrees, on vessels not used to set it too; within 4 mm it gains on some
-/// vessels and loses on others: the gain is the direction's.
-fn averaged_with_profile(
-    circles: &circles::CirclesObjective,
-    circles_result: &(AxisParameters, f64, f64, u64, bool),
-    (by_profile, profile_iterations): (AxisParameters, u64),
-    settings: &SearchSettings,
-) -> Option<Averaged> {
-    let &(by_circles, start_cost, _, _, _) = circles_result;
-    let circles_direction = sections::CandidateFrame::new(&by_circles).direction();
-    let profile_direction = sections::CandidateFrame::new(&by_profile).direction();
-    let between_deg = crate::orient::angle_between_deg(&circles_direction, &profile_direction);
-    if between_deg > MAX_CRITERIA_DISAGREEMENT_DEG {
-        return None;
-    }
-    let [tilt_x, tilt_y] = sections::tilts_along(&(circles_direction + profile_direction));
-    // The shifts are the crossing of the start frame's z = 0, the centroid's height.
-    let turned = [tilt_x, tilt_y, by_circles[2], by_circles[3]];
-    let (placed, placing_iterations) = search_shifts(circles, turned, settings)?;
-    let holds = radial_curvature(circles, &placed) >= MIN_AVERAGED_PLACING_HOLD * radial_curvature(circles, &by_circles);
-    // Turned only where that is no worse than the start by Eq. 2, as every result is.
-    let turned_cost = (!holds).then(|| circles.value(&turned)).filter(|cost| *cost <= start_cost);
-    let (parameters, cost, placed_by_circles) = match turned_cost {
-        Some(cost) => (turned, cost, false),
-        None => (placed, circles.value(&placed), true),
-    };
-    (cost <= start_cost).then_some(Averaged {
-        parameters,
-        cost,
-        iterations: profile_iterations + placing_iterations,
-        between_deg,
-        placed_by_circles,
-    })
-}
-
-/// The axis [`averaged_with_profile`] gives.
-struct Averaged {
-    parameters: AxisParameters,
-    /// Eq. 2 at `parameters`.
-    cost: f64,
-    /// The profile search's and the placement's iterations.
-    iterations: u64,
-    /// The angle between the circles criterion's and the profile criterion's axes, degrees.
-    between_deg: f64,
-    /// Placed by Eq. 2; otherwise turned about the circles' axis at the centroid's height.
-    placed_by_circles: bool,
-}
-
-/// Least share of the circles criterion's own [`radial_curvature`] that Eq. 2 must keep
-/// at the averaged axis of [`averaged_with_profile`] for that axis to be placed by Eq. 2.
-/// Where the averaged direction lies across the valley of Eq. 2 less than half as firmly,
-/// the placement slides along the fragment's radius, and an axis Eq. 2 alone had near the
-/// truth ends farther off; turned about the circles' axis at the fragment instead, it
-/// keeps the averaged direction and the position Eq. 2 fixed there. The fragments the
-/// average placed by Eq. 2 took out of 4 mm had mostly lost more than half the
-/// curvature (figures in `docs/calibration.md`); the directions, and so the median
-/// angle, are those of the average either way.
-const MIN_AVERAGED_PLACING_HOLD: f64 = 0.5;
-
-/// The axis with the tilts of `tilted` placed by the circles criterion (two shifts), and
-/// the iterations, when the skins fix its position: enough horizontal sections cut them,
-/// and moving the placed axis [`PLACING_PROBE_MM`] along the start axis's radius through
-/// it raises Eq. 2 at least [`MIN_PLACING_CURVATURE`]-fold ([`radial_curvature`]). On a
-/// short arc of a deformed vessel Eq. 2 barely changes along the fragment's radius (each
-/// section's radius follows the centre), and the placement wanders 5-10 mm along it,
-/// where the probe then runs; `None` then, and the plane's direction
-/// turns about the start axis's point at the centroid's height.
-pub(crate) fn place_by_circles(
-    circles: &circles::CirclesObjective,
-    tilted: AxisParameters,
-    settings: &SearchSettings,
-) -> Option<(AxisParameters, u64)> {
-    place_with(circles, tilted, |tilted| search_shifts(circles, tilted, settings))
-}
-
-/// The two shifts minimising Eq. 2 with the tilts of `tilted` held, by Nelder-Mead, and
-/// the iterations; no test of whether the skins fix them (see [`place_with`]).
-pub(crate) fn search_shifts(
-    circles: &circles::CirclesObjective,
-    tilted: AxisParameters,
-    settings: &SearchSettings,
-) -> Option<(AxisParameters, u64)> {
-    minimize(circles, tilted, &SearchSettings { free: FreeParameters::ShiftsOnly, ..*settings })
-        .ok()
-        .map(|placed| (placed.parameters, placed.iterations))
-}
-
-/// [`place_by_circles`] with the two shifts found by `place` instead of a Nelder-Mead
-/// search (the bootstrap places its resamples by Newton steps), under the same conditions.
-pub(crate) fn place_with(
-    circles: &circles::CirclesObjective,
-    tilted: AxisParameters,
-    place: impl FnOnce(AxisParameters) -> Option<(AxisParameters, u64)>,
-) -> Option<(AxisParameters, u64)> {
-    let (placed, iterations) = place_where_sections_allow(circles, tilted, place)?;
-    (radial_curvature(circles, &placed) >= MIN_PLACING_CURVATURE).then_some((placed, iterations))
-}
-
-/// The two shifts found by `place` where enough horizontal sections cut the skins,
-/// whether or not they fix the position: [`place_with`] without its curvature test.
-pub(crate) fn place_where_sections_allow(
-    circles: &circles::CirclesObjective,
-    tilted: AxisParameters,
-    place: impl FnOnce(AxisParameters) -> Option<(AxisParameters, u64)>,
-) -> Option<(AxisParameters, u64)> {
-    if usable_section_count(circles, &tilted) < MIN_PLACING_SECTIONS {
-        return None;
-    }
-    place(tilted)
-}
-
-/// The horizontal sections under the axis `parameters` with the points Eq. 2 needs.
-fn usable_section_count(circles: &circles::CirclesObjective, parameters: &AxisParameters) -> usize {
-    circles
-        .surface
-        .horizontal_sections(&sections::CandidateFrame::new(parameters))
-        .iter()
-        .filter(|s| s.points.len() >= circles::MIN_SECTION_POINTS)
-        .count()
-}
-
-/// The rise of Eq. 2 when the axis `p` moves [`PLACING_PROBE_MM`] along the radius of
-/// the start axis through its crossing of the start frame's z = 0 (the line from where the
-/// pre-orientation put the axis to where `p` puts it; towards the fragment where `p` has
-/// not moved), both ways, mean of both, relative to Eq. 2 at `p` or to the square of
-/// [`MIN_PLACING_RESIDUAL_MM`] where that is larger: how well the skins hold the axis
-/// where the search took it. Infinite where Eq. 2 is zero at `p`.
-///
-/// Not the rise towards the fragment at every `p`: measured that way, Eq. 2 rose less
-/// than [`MIN_PLACING_CURVATURE`]-fold for 330 of the 351 fragments [`Criterion::Auto`]
-/// refined by circles on the 20-vessel refinement corpus, right and wrong alike (a
-/// median of 0.5-fold: the valley of Eq. 2 along the meridian tilt and the radius is
-/// that flat). Along the placement's own move the test tells something: a search that
-/// wandered far along that valley is probed along it and rises little, one that stayed
-/// near the start is probed in whatever direction its small shift took. Of those 351 it
-/// flagged 101, 26 of the 34 that ended more than 4 mm off.
-pub(crate) fn radial_curvature(circles: &circles::CirclesObjective, p: &AxisParameters) -> f64 {
-    let at = circles.value(p);
-    // The start axis is the start frame's z axis (the fragment's centroid lies on +x at
-    // height 0): the probe runs from the start axis's crossing of z = 0 through `p`'s.
-    let distance = p[2].hypot(p[3]);
-    if !(at > 0.0) || !at.is_finite() {
-        return if at == 0.0 { f64::INFINITY } else { 0.0 };
-    }
-    let (x, y) = if distance < 1e-9 { (1.0, 0.0) } else { (p[2] / distance, p[3] / distance) };
-    let moved = |step_mm: f64| circles.value(&[p[0], p[1], p[2] - step_mm * x, p[3] - step_mm * y]);
-    ((moved(PLACING_PROBE_MM) + moved(-PLACING_PROBE_MM)) / 2.0 - at) / at.max(MIN_PLACING_RESIDUAL_MM.powi(2))
-}
-
-/// The least residual of Eq. 2 (root mean square, mm) that [`radial_curvature`] measures
-/// its rise against. Below the residual a scan's noise leaves, what remains is the
-/// vessel's deformation, which is systematic: the rise over it says how far the
-/// deformation lets the axis slide, not how firmly the sections hold it, and the
-/// threshold [`MIN_PLACING_CURVATURE`] was set on scans with noise. The floor lies under
-/// the residuals a noisy scan leaves, so a noisy scan is judged as before, and more of a
-/// clean scan's flat valleys are flagged, though not all (`docs/calibration.md`).
-const MIN_PLACING_RESIDUAL_MM: f64 = 0.012;
-
-/// How far the placed axis is moved along the radial line to test its conditioning, mm.
-const PLACING_PROBE_MM: f64 = 2.0;
-/// Least relative rise of Eq. 2 over that move for the placement to count. On the
-/// synthetic corpus (3 vessels, `REFINE_ACCURACY_DUMP`) placements that wandered 5-10 mm
-/// rose 0.04-11-fold, those that brought the axis within 1 mm of the truth 13-900-fold.
-pub(crate) const MIN_PLACING_CURVATURE: f64 = 12.0;
-
 /// `axis` pointing the same way (base to rim) as `reference`.
 fn orient_like(axis: &Axis, reference: &Axis) -> Axis {
     if axis.direction.dot(&reference.direction) < 0.0 { axis.flipped() } else { *axis }
 }
 
-/// Minimises and keeps the start when the search does not beat it:
-/// `(parameters, start cost, cost, iterations, kept start)`.
-fn run_guarded<O: Objective>(
-    objective: &O,
-    start: AxisParameters,
-    settings: &SearchSettings,
-) -> Result<(AxisParameters, f64, f64, u64, bool)> {
-    let start_cost = objective.value(&start);
-    let Minimum { parameters, value, iterations } = minimize(objective, start, settings)?;
-    if value < start_cost {
-        Ok((parameters, start_cost, value, iterations, false))
-    } else {
-        Ok((start, start_cost, start_cost, iterations, true))
-    }
-}
-
-/// The criterion [`refine`] would run on `mesh` from `axis` (the one of `options`, or
-/// the one `Criterion::Auto` picks: the tangent plane where a level rim or base is
-/// preserved, the circles (with the profile) otherwise), without running it.
-pub fn chosen_criterion(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Result<Criterion> {
-    validate(mesh, axis, options)?;
-    let surface = PreparedSurface::new(mesh, axis, options.surface, options.section_count)?;
-    Ok(choose_criterion(&surface, options).criterion)
-}
-
-/// The criterion [`choose_criterion`] picked.
-pub(crate) struct Choice {
-    /// The criterion to run.
-    pub criterion: Criterion,
-    /// Why.
-    pub reason: String,
-    /// The edge for the tangent criterion.
-    pub edge: Option<Edge>,
-    /// The edge levelled from the start axis, where the detection already did it (the
-    /// tangent criterion's own first step, with the same settings), with the flat face
-    /// that gave its tilts.
-    pub levelled: Option<Levelling>,
-}
-
-/// The criterion to run, why, the edge for the tangent criterion and, where the edge was
-/// detected, its levelling.
-pub(crate) fn choose_criterion(surface: &PreparedSurface, options: &RefineOptions) -> Choice {
-    let detect = || {
-        detect_edges_levelled(surface, options, [EDGE_LEVEL_FRACTION; 2])
-            .into_iter()
-            .min_by(|a, b| a.0.spread_mm.total_cmp(&b.0.spread_mm))
-    };
-    match options.criterion {
-        Criterion::Auto => match options.edge.map(|edge| (edge, None)).or_else(|| detect().map(|e| (e.0.edge, Some(e)))) {
-            Some((edge, detected)) => Choice {
-                criterion: Criterion::Tangent,
-                reason: match &detected {
-                    Some((e, _)) => format!(
-                        "a level {:?}: {:.0}% of vertical sections within {EDGE_LEVEL_TOLERANCE_MM} mm, spread {:.2} mm",
-                        e.edge,
-                        e.level_fraction * 100.0,
-                        e.spread_mm
-                    ),
-                    None => format!("{edge:?} given"),
-                },
-                edge: Some(edge),
-                levelled: detected.and_then(|(_, levelled)| levelled),
-            },
-            None => Choice {
-                criterion: Criterion::Circles,
-                reason: "no level rim or base: horizontal circles".into(),
-                edge: None,
-                levelled: None,
-            },
-        },
-        Criterion::Tangent => {
-            let detected = if options.edge.is_some() { None } else { detect() };
-            let edge = options.edge.or(detected.as_ref().map(|e| e.0.edge)).unwrap_or(Edge::Rim);
-            Choice { criterion: Criterion::Tangent, reason: "asked for".into(), edge: Some(edge), levelled: detected.and_then(|(_, l)| l) }
-        }
-        other => Choice { criterion: other, reason: "asked for".into(), edge: None, levelled: None },
-    }
-}
-
-/// Largest turn of a levelled rim's axis by its plane through the finer vertical sections,
-/// degrees. A short rim's plane is barely held about its chord, and the finer sections let
-/// it slide there further (on the refinement corpus, 30 vessels in 0.8 mm cells: a rim
-/// levelled 1.9 degrees off went to 8.9, and the root mean square of the rims' errors
-/// rose 0.95 -> 1.03 degrees while their median fell 0.212 -> 0.199); within a degree
-/// the median gain stays (0.199, 194 of 251 rims within 0.3 degrees instead of 185) and
-/// the root mean square is 0.95.
-const MAX_RIM_PLANE_TURN_DEG: f64 = 1.0;
-
-/// Horizontal sections with points that the circles criterion needs to place a levelled
-/// axis.
-const MIN_PLACING_SECTIONS: usize = 6;
 /// Horizontal sections with points that the automatic refinement needs to run the circles
 /// criterion. Fewer leave Eq. 2 free to fit its four parameters to a patch: on the
 /// refinement corpus in 0.8 mm cells, bases with one section of seven or eight points at

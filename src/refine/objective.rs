@@ -187,6 +187,32 @@ pub fn minimize<O: Objective + ?Sized>(objective: &O, start: AxisParameters, set
     Ok(best)
 }
 
+/// What one criterion's search from the start gave.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CriterionRun {
+    /// The axis found, or the start where the search did not beat it.
+    pub parameters: AxisParameters,
+    /// The criterion's cost at the start.
+    pub start_cost: f64,
+    /// The criterion's cost at `parameters`.
+    pub cost: f64,
+    /// Optimiser iterations (cost evaluations for the Pareto search).
+    pub iterations: u64,
+    /// True when the search did not beat the start, which is kept.
+    pub kept_start: bool,
+}
+
+/// Minimises `objective` from `start`, and keeps the start when the search does not beat
+/// it: a refinement never returns an axis its own criterion rates worse.
+pub(crate) fn run_guarded<O: Objective>(objective: &O, start: AxisParameters, settings: &SearchSettings) -> Result<CriterionRun> {
+    let start_cost = objective.value(&start);
+    let Minimum { parameters, value, iterations } = minimize(objective, start, settings)?;
+    Ok(match value < start_cost {
+        true => CriterionRun { parameters, start_cost, cost: value, iterations, kept_start: false },
+        false => CriterionRun { parameters: start, start_cost, cost: start_cost, iterations, kept_start: true },
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
