@@ -37,7 +37,9 @@ pub struct PipelineOptions {
     /// Refinement after pre-orientation (also of an axis whose sense is uncertain);
     /// `None` keeps the pre-orientation.
     pub refine: Option<RefineOptions>,
-    /// Measurements.
+    /// Measurements. Where the pipeline refines the axis, its intervals refine their
+    /// resampled axes with the same options ([`PipelineOptions::refine`]), whatever
+    /// `measure.refine` holds: an interval is about the axis the pipeline gives.
     pub measure: MeasureOptions,
     /// Refine on the full-resolution mesh instead of the pre-orientation's decimated copy
     /// (a scan larger than the working size). Off by default: on 48 synthetic sherds of
@@ -216,6 +218,7 @@ pub fn analyse(mut mesh: Mesh, options: &PipelineOptions) -> Result<Analysis> {
         let measure_options = MeasureOptions {
             axis_valley_width: valley.1.is_finite().then_some(valley),
             axis_competitor_reach: orientation.competitor_reach,
+            refine: options.refine.clone().unwrap_or_else(|| options.measure.refine.clone()),
             ..options.measure.clone()
         };
         measurements = Some(measure_with_bootstrap_mesh(&mesh, bootstrap_mesh, axis, &measure_options));

@@ -67,3 +67,25 @@ fn an_axis_the_bootstrap_doubts_is_not_called_ok() {
     assert!(ok_offsets_mm.iter().all(|&off| off < 4.0), "ok rows' offsets {ok_offsets_mm:?} mm");
     assert!(right_given >= 4, "{right_given} axes within 4 mm given as ok or axis_uncertain");
 }
+
+/// The intervals are about the axis the pipeline gives: where it refines, the bootstrap
+/// refines its resamples with the pipeline's own refinement options, whatever the
+/// measurement options were given (the command and the C ABI once had to copy them over,
+/// and a library caller who did not got intervals of another criterion).
+#[test]
+fn the_intervals_resample_the_pipelines_own_refinement() {
+    use sherd::refine::Criterion;
+    use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart};
+    let sherd = synthetic_sherd(3, &SherdOptions { target_faces: 8000, ..SherdOptions::for_part(SherdPart::Body) });
+    let profile = RefineOptions { criterion: Criterion::Profile, ..Default::default() };
+    let with_measure_refine = |criterion| {
+        let mut options = PipelineOptions { refine: Some(profile.clone()), ..Default::default() };
+        options.measure.refine = RefineOptions { criterion, ..Default::default() };
+        let analysis = analyse(sherd.mesh.clone(), &options).unwrap();
+        let measurements = analysis.measurements.expect("a body sherd with its axis line is measured");
+        (measurements.axis_angle_interval_deg, measurements.axis_distance_interval_mm)
+    };
+    let given_profile = with_measure_refine(Criterion::Profile);
+    assert!(given_profile.0.is_some() && given_profile.1.is_some(), "{given_profile:?}");
+    assert_eq!(with_measure_refine(Criterion::Circles), given_profile);
+}

@@ -35,7 +35,6 @@ unsafe fn pipeline_options(
         unsafe { borrow(refine_options, "refine_options") }?.options.clone()
     };
     let mut options = PipelineOptions { millimetres_per_unit, ..Default::default() };
-    options.measure.refine = refine.clone();
     options.refine = Some(refine);
     Ok(options)
 }

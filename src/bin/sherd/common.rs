@@ -236,9 +236,6 @@ impl AnalysisArgs {
                 ..defaults
             }
         });
-        if let Some(refine) = &options.refine {
-            options.measure.refine = refine.clone();
-        }
         Ok(options)
     }
 }
