@@ -2,7 +2,7 @@
 //! parameters ([`AxisParameters`]), minimised by Nelder-Mead (argmin) as in the
 //! original tool (Wilczek et al. 2018, section 2.3), but restarted from its own result
 //! with a fresh simplex until a restart no longer improves: a single Nelder-Mead run
-//! often stalls on a collapsed simplex (a weakness of the original, see dacord-notes).
+//! often stalls on a collapsed simplex (a weakness of the original tool).
 
 use argmin::core::{CostFunction, Executor, State};
 use argmin::solver::neldermead::NelderMead;

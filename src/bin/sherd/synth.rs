@@ -1,6 +1,6 @@
 //! `sherd synth OUTDIR [--seed S] [--count N]`: synthetic sherds with known axes as
 //! `NAME.ply` + `NAME.truth.json`, the test bed for orientation and drawing. By default a
-//! whole vessel is broken into 20-40 fragments (issue 2's wording); `--part`,
+//! whole vessel is broken into 20-40 fragments, as a dropped pot is; `--part`,
 //! `--hard-case` or `--faces` ask for one sherd per seed instead. `-o OUTDIR` is the
 //! same as the positional folder.
 
@@ -14,7 +14,7 @@ use sherd::synth::{
 };
 use sherd::{Error, Result};
 
-/// Fewest and most fragments a vessel is broken into by default (issue 2: 20-40).
+/// Fewest and most fragments a vessel is broken into by default.
 const DEFAULT_FRAGMENTS: [usize; 2] = [20, 40];
 /// Triangles of a single sherd when `--part` or `--hard-case` is given without `--faces`.
 const DEFAULT_SHERD_FACES: usize = 20_000;

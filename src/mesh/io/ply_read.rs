@@ -1,7 +1,6 @@
 //! The PLY reader (ascii, binary little and big endian), hand-written rather than built
-//! on ply-rs-bw because it is measurably faster on a 500k-face scan (`benches/ply.rs`,
-//! figures in BENCHMARKS.md, "PLY reading": 2x faster than ply-rs-bw parsing into typed
-//! structs, more than 10x faster than its generic `DefaultElement`): ply-rs-bw hands every value
+//! on ply-rs-bw because it is measurably faster on a 500k-face scan (`benches/ply.rs`;
+//! BENCHMARKS.md, "PLY reading", has the figures): ply-rs-bw hands every value
 //! to a callback by property name (or builds a hash map of them per element), this reader
 //! decodes fixed-size records from one slice straight into the mesh's arrays. It also
 //! gives what ply-rs-bw does not: a size check of the header's counts before allocating,
