@@ -144,18 +144,18 @@ fn synthetic(options: &OrientOptions, vessels: u64, fragments: usize, csv: Optio
         hard_all.extend(hard);
     }
     if let Some(path) = csv {
-        let mut text = String::from("id,part,sector_deg,angle_err,sense_ok,mpd,line_mpd,flagged,raw_sigma,spread,concurrency,resid_angle,sphere_angle,pos_unc,comp_angle,comp_ratio,inliers,dir_strength,dir_cue,ms,reason,shape,floor,level,upper_spread,lower_spread,opening,slope,upper_frac,lower_frac,region_turn,sense_uncertain,crossing_radius\n");
+        let mut text = String::from("id,part,sector_deg,angle_err,sense_ok,mpd,line_mpd,flagged,spread,concurrency,resid_angle,pos_unc,comp_angle,comp_ratio,inliers,dir_strength,dir_cue,ms,reason,shape,floor,level,upper_spread,lower_spread,opening,slope,upper_frac,lower_frac,sense_uncertain\n");
         for o in outcomes.iter().chain(&mixed).chain(&hard_all) {
             let (ca, cr) = o.competitor.unwrap_or((0.0, f64::INFINITY));
             text += &format!(
-                "{},{},{:.1},{:.3},{},{:.3},{:.3},{},{:.4},{:.4},{:.4},{:.3},{:.3},{:.3},{:.1},{:.3},{:.3},{:.3},{},{:.1},\"{}\",{:?},{},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{},{:.2}\n",
+                "{},{},{:.1},{:.3},{},{:.3},{:.3},{},{:.4},{:.4},{:.3},{:.3},{:.1},{:.3},{:.3},{:.3},{},{:.1},\"{}\",{:?},{},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{:.3},{}\n",
                 o.id, o.part.name(), o.sector_angle_deg, o.line_angle_error_deg, o.sense_correct, o.mean_point_distance_mm,
-                o.line_point_distance_mm, o.flagged, o.raw_angle_sigma_deg, o.normal_spread, o.concurrency_ratio,
-                o.residual_angle_deg, o.sphere_residual_angle_deg, o.position_uncertainty_mm, ca, cr, o.inlier_fraction, o.direction_strength,
+                o.line_point_distance_mm, o.flagged, o.normal_spread, o.concurrency_ratio,
+                o.residual_angle_deg, o.position_uncertainty_mm, ca, cr, o.inlier_fraction, o.direction_strength,
                 o.direction_cue.replace(',', ";"), o.elapsed_ms, o.reason.replace('"', "'"), o.shape, o.sense_cues.floor,
                 o.sense_cues.level_edge, o.sense_cues.upper_end_spread_mm, o.sense_cues.lower_end_spread_mm,
                 o.sense_cues.opening, o.sense_cues.wall_slope, o.sense_cues.upper_level_fraction,
-                o.sense_cues.lower_level_fraction, o.region_turn_deg, o.sense_uncertain, o.axis_crossing_curvature_radius_mm.unwrap_or(f64::NAN)
+                o.sense_cues.lower_level_fraction, o.sense_uncertain
             );
         }
         std::fs::write(path, text).expect("CSV written");

@@ -25,6 +25,14 @@ pub struct AxisRecord {
     pub direction: [f64; 3],
 }
 
+/// Two unit vectors completing `direction` to a right-handed orthonormal frame.
+pub fn perpendicular_frame(direction: &Vector) -> (Vector, Vector) {
+    let helper = if direction.x.abs() < 0.6 { Vector::x() } else { Vector::y() };
+    let e1 = direction.cross(&helper).normalize();
+    let e2 = direction.cross(&e1);
+    (e1, e2)
+}
+
 /// Angle in degrees between two directions (unit or not), from the sine and the cosine:
 /// the arc cosine of a unit vector's rounded square norm (1 - 2e-16) is already 1e-6
 /// degrees, so a direction measured against itself did not come out 0.

@@ -118,7 +118,7 @@ pub fn competing_valleys(landscape: &Landscape, blocks: &[Option<usize>], min_an
 /// its foot) does not fix the axis's position.
 pub fn position_hold(samples: &RevolutionSamples, best: &Axis, shift_mm: f64, loss_scale_mm: f64) -> f64 {
     let d = best.direction.into_inner();
-    let (e1, e2) = super::halir::perpendicular_frame(&d);
+    let (e1, e2) = crate::axis::perpendicular_frame(&d);
     let weighted_mean = |losses: Vec<f64>| {
         let total: f64 = samples.weights.iter().sum();
         losses.iter().zip(&samples.weights).map(|(l, w)| l * w).sum::<f64>() / total.max(1e-300)
@@ -150,7 +150,7 @@ const PROBE_STEPS: [f64; 9] = [0.125, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0]
 /// to 32 degrees (millimetres) separates, 64: the valley is at least that wide.
 pub fn valley_width(samples: &RevolutionSamples, blocks: &[Option<usize>], best: &Axis, loss_scale_mm: f64) -> (f64, f64) {
     let d = best.direction.into_inner();
-    let (e1, e2) = super::halir::perpendicular_frame(&d);
+    let (e1, e2) = crate::axis::perpendicular_frame(&d);
     let anchor = best.closest_point(&samples.centroid);
     let best_losses = point_losses(samples, best, loss_scale_mm);
     let bound = |separates: &dyn Fn(f64) -> f64| {

@@ -3,19 +3,16 @@
 //! with an honest verdict when the data do not determine it.
 //!
 //! Automatic pipeline ([`orient_automatic`]): working copy (decimated, smoothed,
-//! area-weighted normals) -> normal lines -> opposite-normal filter
-//! ([`opposite_normals`]) -> hypotheses from the line complex and the sampler
-//! ([`line_complex`]) -> multi-start Nelder-Mead and MM refinement ([`halir`],
-//! [`mm_regression`]) -> leave-one-region-out stability ([`region_stability`]) -> sense base to rim ([`direction`]) -> verdict ([`verdict`]).
+//! area-weighted normals) -> normal lines -> opposite-normal filter (`opposite_normals`)
+//! -> whole-sphere search of the directions, each axis placed where the normal lines meet
+//! and scored as a surface of revolution ([`revolution_search`]) -> the verdict of its
+//! landscape ([`landscape`]) -> sense base to rim ([`direction`]) -> verdict ([`verdict`]).
 
 pub mod direction;
-pub mod halir;
 pub mod landscape;
 pub mod line_complex;
-pub mod mm_regression;
 pub mod normal_lines;
-pub mod opposite_normals;
-pub mod region_stability;
+pub(crate) mod opposite_normals;
 pub mod revolution_search;
 pub mod surfaces;
 pub mod three_points;
@@ -31,7 +28,6 @@ pub use verdict::{Verdict, VerdictThresholds};
 
 use crate::mesh::{Mesh, Point};
 use crate::{Error, Result};
-use halir::HalirOptions;
 use line_complex::{CenteredLines, SamplerOptions};
 use normal_lines::NormalLines;
 
@@ -52,8 +48,6 @@ pub struct OrientOptions {
     pub opposite_normal_confidence: Option<f64>,
     /// The sampling initialiser.
     pub sampler: SamplerOptions,
-    /// The multi-start search and the MM refinement.
-    pub halir: HalirOptions,
     /// The whole-sphere search.
     pub search: revolution_search::SearchOptions,
     /// When the result is judged unreliable.
@@ -67,7 +61,6 @@ impl Default for OrientOptions {
             smoothing_iterations: 5,
             opposite_normal_confidence: Some(0.95),
             sampler: SamplerOptions::default(),
-            halir: HalirOptions::default(),
             search: revolution_search::SearchOptions::default(),
             thresholds: VerdictThresholds::default(),
         }
@@ -141,28 +134,14 @@ pub struct OrientReport {
     /// By how much the normals typically miss the axis, seen from it, degrees (see
     /// [`verdict::axis_residual_angle_deg`]).
     pub residual_angle_deg: f64,
-    /// The same for the best common point of the normal lines (a sphere's centre).
-    pub sphere_residual_angle_deg: f64,
     /// Median distance of the kept points to the axis, millimetres.
     pub median_radius_mm: f64,
-    /// Fraction of lines the M-step kept (non-zero weight).
+    /// Share of the points' weight on the surface of revolution about the search's axis.
     pub inlier_fraction: f64,
     /// Second eigenvalue of the normals' scatter over the first (0 for a flat piece).
     pub normal_spread: f64,
     /// `λ1/λ2` of the line complex (near 1 for a near-spherical piece).
     pub concurrency_ratio: f64,
-    /// Uncalibrated direction standard error from the fit's Hessian, degrees.
-    pub raw_angle_sigma_deg: f64,
-    /// Largest turn of the axis, degrees, when one region of the sherd is left out of the
-    /// fit (see [`region_stability`]).
-    pub region_turn_deg: f64,
-    /// The part of that turn in the sherd's meridian plane, degrees (see
-    /// [`region_stability::RegionStability::largest_turn_in_meridian_deg`]).
-    pub region_turn_in_meridian_deg: f64,
-    /// Where the axis passes through the sherd, the curvature radius its normals give there,
-    /// millimetres (see [`verdict::axis_crossing_curvature_radius_mm`]); `None` where the
-    /// axis runs clear of the sherd.
-    pub axis_crossing_curvature_radius_mm: Option<f64>,
     /// Angle to the best competing axis, degrees, and the t statistic by which the best
     /// fits the piece better, block by block (see [`landscape::separation`]).
     pub competitor: Option<(f64, f64)>,

@@ -21,8 +21,6 @@ use crate::mesh::{Point, Vector};
 pub struct OppositeFilter {
     /// Per line: kept (on the surface of revolution) or not.
     pub keep: Vec<bool>,
-    /// Lines whose ray hit the other skin within the thickness bound.
-    pub hit_count: usize,
     /// Lines kept.
     pub kept_count: usize,
     /// The median deviation from antiparallel, degrees (the noise level the test used).
@@ -55,7 +53,6 @@ where
     if hit_count == 0 {
         return OppositeFilter {
             keep: vec![false; lines.len()],
-            hit_count,
             kept_count: 0,
             median_deviation_deg: f64::NAN,
             median_thickness_mm: f64::NAN,
@@ -88,7 +85,6 @@ where
     let kept_count = keep.iter().filter(|k| **k).count();
     OppositeFilter {
         keep,
-        hit_count,
         kept_count,
         median_deviation_deg: median_deviation.to_degrees(),
         median_thickness_mm: median_thickness,

@@ -85,7 +85,7 @@ mod tests {
     #[test]
     fn circle_through_three_points_in_a_tilted_plane() {
         let axis = Vector::new(0.2, -0.3, 1.0).normalize();
-        let (e1, e2) = super::super::halir::perpendicular_frame(&axis);
+        let (e1, e2) = crate::axis::perpendicular_frame(&axis);
         let center = Point::new(5.0, -7.0, 12.0);
         let points: Vec<Point> =
             [0.1f64, 0.9, 2.0].iter().map(|t| center + (e1 * t.cos() + e2 * t.sin()) * 80.0).collect();

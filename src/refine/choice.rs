@@ -9,7 +9,7 @@ use crate::mesh::Mesh;
 use crate::orient::Axis;
 use crate::Result;
 
-/// The criterion [`refine`] would run on `mesh` from `axis` (the one of `options`, or
+/// The criterion [`super::refine`] would run on `mesh` from `axis` (the one of `options`, or
 /// the one `Criterion::Auto` picks: the tangent plane where a level rim or base is
 /// preserved, the circles (with the profile) otherwise), without running it.
 pub fn chosen_criterion(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Result<Criterion> {

@@ -23,7 +23,6 @@ use rand_chacha::ChaCha8Rng;
 
 use super::sections::{AxisParameters, CandidateFrame, PreparedSurface};
 use crate::mesh::{Mesh, Point, Vector};
-use crate::orient::mm_regression::tukey_weight;
 
 /// Normals closer to the axis's direction than this carry no position (floors, lip tops).
 const MIN_HORIZONTAL_NORMAL: f64 = 0.34; // sin 20 degrees
@@ -250,6 +249,18 @@ fn footprint(lines: &[PlanarLine]) -> Option<Footprint> {
     let agreeing_share = agreeing as f64 / lines.len() as f64;
     (position_error_mm <= MAX_POSITION_ERROR_MM && agreeing_share >= MIN_AGREEING_SHARE && scale <= MAX_ANGLE_SPREAD)
         .then_some(Footprint { centre, position_error_mm, agreeing_share })
+}
+
+/// Tukey's biweight IRLS weight `psi(t)/t` (up to a constant): 0 beyond `c`, so that a
+/// line that misses the axis by more than `c` scales carries no weight.
+fn tukey_weight(t: f64, c: f64) -> f64 {
+    let u = t / c;
+    if u.abs() >= 1.0 {
+        0.0
+    } else {
+        let v = 1.0 - u * u;
+        v * v
+    }
 }
 
 #[cfg(test)]

@@ -88,24 +88,16 @@ pub struct FragmentOutcome {
     pub sense_uncertain: bool,
     /// The flag's reason, or the error message.
     pub reason: String,
-    /// The fit's uncalibrated direction standard error, degrees.
-    pub raw_angle_sigma_deg: f64,
     /// The report's figures used by the verdict.
     pub normal_spread: f64,
     /// λ1/λ2 of the line complex.
     pub concurrency_ratio: f64,
     /// Typical angle by which the normals miss the axis, degrees.
     pub residual_angle_deg: f64,
-    /// The same for the best sphere, degrees.
-    pub sphere_residual_angle_deg: f64,
     /// Position uncertainty (calibrated), mm.
     pub position_uncertainty_mm: f64,
     /// Competitor (angle, cost ratio).
     pub competitor: Option<(f64, f64)>,
-    /// Largest turn of the axis with one region of the sherd left out, degrees.
-    pub region_turn_deg: f64,
-    /// Where the axis passes through the sherd, the curvature radius there, mm.
-    pub axis_crossing_curvature_radius_mm: Option<f64>,
     /// Fraction of inliers.
     pub inlier_fraction: f64,
     /// Strength of the sense cue.
@@ -149,15 +141,11 @@ pub fn evaluate(id: String, sherd: &SynthSherd, options: &OrientOptions) -> Frag
         flagged: true,
         sense_uncertain: false,
         reason: String::new(),
-        raw_angle_sigma_deg: f64::INFINITY,
         normal_spread: 0.0,
         concurrency_ratio: 1.0,
         residual_angle_deg: f64::INFINITY,
-        sphere_residual_angle_deg: 0.0,
         position_uncertainty_mm: f64::INFINITY,
         competitor: None,
-        region_turn_deg: f64::INFINITY,
-        axis_crossing_curvature_radius_mm: None,
         inlier_fraction: 0.0,
         direction_strength: 0.0,
         direction_cue: String::new(),
@@ -187,15 +175,11 @@ fn fill(outcome: &mut FragmentOutcome, sherd: &SynthSherd, orientation: &Orienta
         outcome.reason = reason.to_owned();
     }
     let report = &orientation.report;
-    outcome.raw_angle_sigma_deg = report.raw_angle_sigma_deg;
     outcome.normal_spread = report.normal_spread;
     outcome.concurrency_ratio = report.concurrency_ratio;
     outcome.residual_angle_deg = report.residual_angle_deg;
-    outcome.sphere_residual_angle_deg = report.sphere_residual_angle_deg;
     outcome.position_uncertainty_mm = orientation.position_uncertainty_mm;
     outcome.competitor = report.competitor;
-    outcome.region_turn_deg = report.region_turn_deg;
-    outcome.axis_crossing_curvature_radius_mm = report.axis_crossing_curvature_radius_mm;
     outcome.inlier_fraction = report.inlier_fraction;
     outcome.direction_strength = report.direction_strength;
     outcome.direction_cue = report.direction_cue.clone();

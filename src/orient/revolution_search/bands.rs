@@ -6,7 +6,7 @@ use nalgebra::Vector2;
 use super::loss::{robust_loss, MAX_RADIUS_MM, MAX_TANGENTIAL_NORMAL, MIN_BAND_POINTS, OUTLIER_LOSS};
 use super::samples::{project, Projected, RevolutionSamples};
 use crate::axis::Axis;
-use crate::orient::halir::perpendicular_frame;
+use crate::axis::perpendicular_frame;
 
 /// The band of a point under an axis: wall bands by height, flat bands by radius, each
 /// side apart.

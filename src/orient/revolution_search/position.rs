@@ -7,7 +7,7 @@ use super::bands::{evaluate_bands, place, residual, BandEvaluation, BandKey, Ban
 use super::loss::{robust_weight, MIN_BAND_POINTS};
 use super::samples::{project, Projected, RevolutionSamples};
 use crate::mesh::Vector;
-use crate::orient::halir::perpendicular_frame;
+use crate::axis::perpendicular_frame;
 
 // For the doc links only.
 #[cfg(doc)]

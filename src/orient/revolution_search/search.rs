@@ -7,7 +7,7 @@ use super::position::{fit_direction_with, DirectionFit};
 use super::samples::RevolutionSamples;
 use crate::mesh::Vector;
 use crate::axis::Axis;
-use crate::orient::halir::perpendicular_frame;
+use crate::axis::perpendicular_frame;
 use crate::orient::normal_lines::NormalLines;
 
 // For the doc links only.
