@@ -11,15 +11,15 @@
 //! # Ok(()) }
 //! ```
 
-pub mod font;
+pub(crate) mod font;
 mod layout;
-pub mod model;
+pub(crate) mod model;
 pub mod occlusion;
 pub mod png;
-pub mod postscript;
-pub mod raster;
-pub mod stipple;
-pub mod svg;
+pub(crate) mod postscript;
+pub(crate) mod raster;
+pub(crate) mod stipple;
+pub(crate) mod svg;
 mod view;
 
 use std::path::Path;

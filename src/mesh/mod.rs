@@ -7,7 +7,7 @@ pub mod decimate;
 pub mod fingerprint;
 pub mod io;
 pub mod normals;
-pub mod quadric;
+pub(crate) mod quadric;
 pub mod repair;
 pub mod smooth;
 pub mod spatial;

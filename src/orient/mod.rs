@@ -14,8 +14,8 @@ pub mod line_complex;
 pub mod normal_lines;
 pub(crate) mod opposite_normals;
 pub mod revolution_search;
-pub mod surfaces;
-pub mod three_points;
+pub(crate) mod surfaces;
+pub(crate) mod three_points;
 pub mod verdict;
 
 use std::time::Instant;

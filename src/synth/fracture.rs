@@ -57,11 +57,6 @@ impl RoughVoronoi {
         RoughVoronoi { seeds, waves, roughness_mm }
     }
 
-    /// The seeds.
-    pub fn seeds(&self) -> &[Point] {
-        &self.seeds
-    }
-
     /// The fragment (seed index) owning surface point `p`.
     pub fn label(&self, p: &Point) -> u32 {
         let nearest_squared = self.seeds.iter().map(|s| (p - s).norm_squared()).fold(f64::INFINITY, f64::min);

@@ -10,12 +10,12 @@
 //! Every fragment is a closed, watertight, outward-oriented triangle mesh with
 //! area-weighted vertex normals, and the same seed always gives the same bytes.
 
-pub mod colour;
-pub mod deform;
-pub mod fracture;
-pub mod motion;
+pub(crate) mod colour;
+pub(crate) mod deform;
+pub(crate) mod fracture;
+pub(crate) mod motion;
 pub mod shape;
-pub mod shell;
+pub(crate) mod shell;
 pub mod truth;
 pub mod write;
 

@@ -1,6 +1,6 @@
 //! Quadric edge-collapse decimation (Garland and Heckbert 1997), as MeshLab's
 //! "Quadric Edge Collapse Decimation" does it: every vertex carries the error quadric
-//! ([`crate::mesh::quadric::Quadric`]) of its faces' planes (area weighted), edges are
+//! (`crate::mesh::quadric::Quadric`) of its faces' planes (area weighted), edges are
 //! collapsed cheapest first to the point minimising the sum of their endpoints'
 //! quadrics, and a collapse is refused when it would change the topology (the link
 //! condition of Dey et al. 1999), flip or fold a face (normal check), or it is
