@@ -11,14 +11,13 @@ use super::RefineOptions;
 
 /// Largest angle between the axes of the circles criterion and of the profile
 /// superposition that [`averaged_with_profile`] averages, degrees: farther apart, one of
-/// them at least has run off (on the refinement corpus the pairs 6-16 degrees apart
-/// averaged to axes 2.7-7.6 degrees off).
+/// them at least has run off (`docs/calibration.md`).
 const MAX_CRITERIA_DISAGREEMENT_DEG: f64 = 5.0;
 
 /// At most this many skin vertices carry the profile criterion that [`Criterion::Auto`]
 /// averages with Eq. 2 (every k-th skin vertex): the deformation, not the count, limits
-/// what a fragment's profile says about its axis, and on the 10k-vertex body sherd of
-/// `benches/refine.rs` the profile search took 177 ms on all 8,000 skin vertices.
+/// what a fragment's profile says about its axis, while the search's time grows with the
+/// count (`docs/calibration.md`).
 const PROFILE_MAX_SKIN_VERTICES: usize = 3000;
 
 /// The profile superposition (Eq. 5 or 6, [`ProfileMethod`]) minimised from the start of

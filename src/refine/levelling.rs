@@ -17,11 +17,8 @@ use crate::Result;
 
 /// Largest turn of a levelled rim's axis by its plane through the finer vertical sections,
 /// degrees. A short rim's plane is barely held about its chord, and the finer sections let
-/// it slide there further (on the refinement corpus, 30 vessels in 0.8 mm cells: a rim
-/// levelled 1.9 degrees off went to 8.9, and the root mean square of the rims' errors
-/// rose 0.95 -> 1.03 degrees while their median fell 0.212 -> 0.199); within a degree
-/// the median gain stays (0.199, 194 of 251 rims within 0.3 degrees instead of 185) and
-/// the root mean square is 0.95.
+/// it slide there further; within a degree the finer sections' gain stays and no rim runs
+/// off (`docs/calibration.md`).
 const MAX_RIM_PLANE_TURN_DEG: f64 = 1.0;
 
 /// What [`level_and_place`] gives beside the criterion's run.

@@ -406,10 +406,6 @@ fn orient_like(axis: &Axis, reference: &Axis) -> Axis {
 }
 
 /// Horizontal sections with points that the automatic refinement needs to run the circles
-/// criterion. Fewer leave Eq. 2 free to fit its four parameters to a patch: on the
-/// refinement corpus in 0.8 mm cells, bases with one section of seven or eight points at
-/// the foot of their wall were fitted to a hundredth of the true axis's residual 10-28 mm
-/// off it, five of them unflagged; every such runaway had four sections or fewer, in 2 mm
-/// cells too. With five, SfS++ pot C piece 3 (200 points) is still refined from 3.0 to
-/// 2.0 degrees off its reference (six keep its start).
+/// criterion. Fewer leave Eq. 2 free to fit its four parameters to a patch, such as the
+/// few points at the foot of a base's wall (`docs/calibration.md`).
 const MIN_REFINING_SECTIONS: usize = 5;

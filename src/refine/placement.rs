@@ -75,14 +75,10 @@ pub(super) fn usable_section_count(circles: &circles::CirclesObjective, paramete
 /// [`MIN_PLACING_RESIDUAL_MM`] where that is larger: how well the skins hold the axis
 /// where the search took it. Infinite where Eq. 2 is zero at `p`.
 ///
-/// Not the rise towards the fragment at every `p`: measured that way, Eq. 2 rose less
-/// than [`MIN_PLACING_CURVATURE`]-fold for 330 of the 351 fragments [`Criterion::Auto`]
-/// refined by circles on the 20-vessel refinement corpus, right and wrong alike (a
-/// median of 0.5-fold: the valley of Eq. 2 along the meridian tilt and the radius is
-/// that flat). Along the placement's own move the test tells something: a search that
-/// wandered far along that valley is probed along it and rises little, one that stayed
-/// near the start is probed in whatever direction its small shift took. Of those 351 it
-/// flagged 101, 26 of the 34 that ended more than 4 mm off.
+/// Not the rise towards the fragment at every `p`: the valley of Eq. 2 along the meridian
+/// tilt and the radius is so flat that right and wrong axes alike rise little that way.
+/// Along the placement's own move, a search that wandered far along the valley is probed
+/// along it and rises little (figures in `docs/calibration.md`).
 pub(crate) fn radial_curvature(circles: &circles::CirclesObjective, p: &AxisParameters) -> f64 {
     let at = circles.value(p);
     // The start axis is the start frame's z axis (the fragment's centroid lies on +x at
@@ -107,9 +103,9 @@ const MIN_PLACING_RESIDUAL_MM: f64 = 0.012;
 
 /// How far the placed axis is moved along the radial line to test its conditioning, mm.
 pub(super) const PLACING_PROBE_MM: f64 = 2.0;
-/// Least relative rise of Eq. 2 over that move for the placement to count. On the
-/// synthetic corpus (3 vessels, `REFINE_ACCURACY_DUMP`) placements that wandered 5-10 mm
-/// rose 0.04-11-fold, those that brought the axis within 1 mm of the truth 13-900-fold.
+/// Least relative rise of Eq. 2 over that move for the placement to count: placements
+/// that wandered along the valley rise less, those near the truth far more
+/// (`docs/calibration.md`).
 pub(crate) const MIN_PLACING_CURVATURE: f64 = 12.0;
 
 /// Horizontal sections with points that the circles criterion needs to place a levelled
