@@ -124,24 +124,16 @@ pub struct Measurements {
 /// An axis whose 95% angle interval reaches further than this is reported uncertain,
 /// degrees. The bootstrap's spread is what tells a wrong axis from a right one where the
 /// criterion itself cannot: on short body arcs the circles criterion prefers a wrong
-/// axis, and then resampled sections scatter widely. On the synthetic corpus
-/// (`examples/refine_accuracy.rs 10 auto`, 326 fragments) results more than 4 mm off
-/// and flagged by neither the refinement nor this were 3.4% with no threshold, 2.5% at
-/// 5 degrees, 1.9% at 4, 1.6% at 3; the price is flagging 37% of the results at 4 (15%
-/// without), most of them body sherds whose axis is right but not known to be.
+/// axis, and then resampled sections scatter widely. The price is flagging body sherds
+/// whose axis is right but not known to be (`docs/calibration.md`).
 pub const MAX_UNFLAGGED_AXIS_INTERVAL_DEG: f64 = 4.0;
 
 /// An axis whose 95% distance interval reaches further than this is reported uncertain,
 /// mm. The paper calls an axis wrong when it moves the sherd's points by more than 4 mm on
 /// average; the bootstrap sees a position the skins barely fix as replicates that slide
-/// along the radius. On the pipeline's oriented sherds of the synthetic corpus (10
-/// vessels, 101 sherds, 16 of them more than 4 mm off) this test and the angle's flag 41
-/// and catch 14 of the 16 wrong (at 4 mm: 60 and 15; at 6: 32 and 13), where the
-/// refinement's own test (Eq. 2 rises less than 12-fold over a 2 mm radial move) and the
-/// angle's flagged 38 and caught 11; on 40 oriented `sherd synth` scans of 200k faces
-/// (3 wrong), 9 and 2, against 8 and none: there the refinement's test flagged six axes
-/// within 1.5 mm of the truth (on a dense scan Eq. 2 is flatter along the radius than on
-/// the coarse corpus, the placement as good).
+/// along the radius; it catches more wrong axes than the refinement's own placement test
+/// and flags fewer right ones on dense scans, where Eq. 2 is flatter along the radius
+/// (`docs/calibration.md`).
 pub const MAX_UNFLAGGED_AXIS_DISTANCE_MM: f64 = 5.0;
 
 /// An axis that moves further than this when the fragment is refined again without one

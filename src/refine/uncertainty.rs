@@ -79,18 +79,16 @@ impl Default for BootstrapOptions {
     }
 }
 
-/// Default [`BootstrapOptions::angle_floor_deg`], calibrated on the synthetic corpus.
+/// Default [`BootstrapOptions::angle_floor_deg`] (`docs/calibration.md`).
 const ANGLE_FLOOR_DEG: f64 = 0.5;
 /// Default [`BootstrapOptions::spread_factor`]. The bootstrap draws sections as if they
 /// were independent, but neighbouring sections share the vessel's deformation and the
-/// scan's noise pattern, so the resampled axes scatter less than the estimate's error:
-/// at 2.0 the synthetic corpus's axis intervals covered the truth too rarely, at 2.5
-/// (`examples/refine_accuracy.rs`) about 93% of them do.
+/// scan's noise pattern, so the resampled axes scatter less than the estimate's error
+/// (`docs/calibration.md`).
 pub const SPREAD_FACTOR: f64 = 2.5;
-/// Default [`BootstrapOptions::rim_diameter_floor_fraction`]: the synthetic corpus
-/// deforms its vessels (ovality, lean, wobble) and adds noise; a rim's radius on a
-/// short arc of an oval rim differs from the vessel's nominal one by up to a few
-/// percent whatever the axis, an error no resample of the sections shows.
+/// Default [`BootstrapOptions::rim_diameter_floor_fraction`]: a rim's radius on a short
+/// arc of an oval rim differs from the vessel's nominal one by up to a few percent
+/// whatever the axis, an error no resample of the sections shows.
 pub const RIM_DIAMETER_FLOOR_FRACTION: f64 = 0.03;
 /// Default [`BootstrapOptions::base_diameter_floor_fraction`]: as for the rim, and the
 /// base edge (where the outer skin leaves the standing plane) is a rounded foot whose
@@ -99,10 +97,8 @@ pub const RIM_DIAMETER_FLOOR_FRACTION: f64 = 0.03;
 pub const BASE_DIAMETER_FLOOR_FRACTION: f64 = 0.05;
 
 /// Default [`BootstrapOptions::distance_floor_mm`]: every resample shares the vessel's
-/// deformation (a wobble or an oval rim moves the best axis by a millimetre or two), so
-/// the widened spread alone held the true distance in 75.7% of the refined axes of the
-/// synthetic corpus (`examples/refine_accuracy.rs 10`, auto); with this floor 96.0% (the
-/// pipeline's 91.1%; 92.5% on 40 oriented `sherd synth` scans of 200k faces).
+/// deformation (a wobble or an oval rim moves the best axis by a millimetre or two), which
+/// the widened spread alone does not show (`docs/calibration.md`).
 pub const DISTANCE_FLOOR_MM: f64 = 2.0;
 
 /// Multinomial resampling weights: `count` draws with replacement among `count` items.
