@@ -166,18 +166,16 @@ pub(crate) fn flatter_by_plane(
 /// A rim or base is level when this share of vertical sections has its extreme within
 /// 1 mm (`EDGE_LEVEL_TOLERANCE_MM`) of the median extreme.
 pub const EDGE_LEVEL_FRACTION: f64 = 0.6;
-/// ...and their median absolute deviation is at most this, mm. On the synthetic corpus
-/// levelled rims and bases spread by 0.01-0.02 mm, levelled break lines by 0.1 mm or more.
+/// ...and their median absolute deviation is at most this, mm: between a levelled rim's
+/// or base's spread and a levelled break line's (`docs/calibration.md`).
 const EDGE_MAX_SPREAD_MM: f64 = 0.08;
 /// ...and their ends sag from the plane by at most this, mm ([`tangent::edge_sag_mm`]),
 /// unless a flat underside holds the base's plane: a rounded underside rocks, and Eq. 7
 /// levels it degrees off while its extremes still look level (`docs/calibration.md`).
 const EDGE_MAX_SAG_MM: f64 = 0.15;
 /// A piece with less than this share of its vertices on a wall skin (facing away from or
-/// towards the axis) is a floor ([`is_floor`]). On the refinement corpus the rims keep
-/// 39-85% of their vertices on the skins and the rim-to-base pieces 19-35%; the two floor
-/// pieces that Eq. 7 had levelled as rims (their curved upper faces, 4.8 and 7.4 degrees
-/// off, not flagged) 0.1% and none.
+/// towards the axis) is a floor ([`is_floor`]), whose curved upper face Eq. 7 would
+/// otherwise level as a rim (`docs/calibration.md`).
 const MIN_WALL_SHARE: f64 = 0.02;
 
 /// Whether the piece is a floor, with (almost) no wall: its highest points lie on its

@@ -30,18 +30,13 @@ const FACE_BEYOND_MM: f64 = 0.075;
 /// A face's vertex whose normal turns from the face's by more than this many times the
 /// median turn is left out of its plane.
 const FACE_MAX_NORMAL_TURN_FACTOR: f64 = 2.0;
-/// Highest rise of a flat face's bowl ([`FittedFace::bowl_rise_mm`]), mm. Tried on the
-/// bases of the refinement corpus (Eq. 7's levelling as the start), the 93 faces within
-/// half a degree of the truth rose 0.0101 mm at most, and 2 of the 437 a degree or more
-/// off less than 0.011; on a 200k-face floor the face rose 0.004 mm, the patches of the
-/// rounded wall beside it 0.034-0.045. Its t statistic does not tell them apart: with
-/// thousands of vertices a floor's slightest bowl is significant.
+/// Highest rise of a flat face's bowl ([`FittedFace::bowl_rise_mm`]), mm: a floor rises
+/// a few micrometres, the lowest patch of a rounded underside tens. Not its t statistic:
+/// with thousands of vertices a floor's slightest bowl is significant
+/// (`docs/calibration.md`).
 const FACE_MAX_BOWL_RISE_MM: f64 = 0.011;
 /// Largest standard error of that rise, mm: below it the face's vertices are enough to
-/// tell a floor from a bowl. The 0.02 mm noise of the refinement corpus needs about 30
-/// vertices; a 23-vertex patch of a rounded underside (vessel 5 fragment 6) passed the
-/// rise and levelled its base 1.47 degrees off, where the faces within half a degree of
-/// the truth had 34 vertices or more.
+/// tell a floor from a bowl (`docs/calibration.md`).
 const FACE_MAX_BOWL_RISE_ERROR_MM: f64 = 0.0075;
 /// The sampled planes: how many, the half-width of the band that counts a vertex in, mm,
 /// the least area of the sampled triangle (mm^2, as the cross product's length: twice
@@ -99,11 +94,6 @@ impl FlatFace {
 ///   (the rise's) are left out of its final total-least-squares fit;
 /// - it does not curve like a bowl, as the lowest patch of a rounded underside does;
 /// - of the faces that pass, the one with the most vertices.
-///
-/// On the refinement corpus (`examples/refine_accuracy.rs 10 auto`) the bases went from
-/// a median error of 0.147 to 0.030 degrees, 50 to 64 of 82 levelled by the tangent
-/// plane; the earlier face, fitted from the band above the levelled lowest point, had
-/// taken them from 0.110 to 0.030 where Eq. 7 found them.
 ///
 /// Not for the rim of a wall: a flat rim top is cut square across the wall, so on a wall
 /// that slants it is a band of a cone, whose plane over a short arc turns with the slant

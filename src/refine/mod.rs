@@ -166,9 +166,8 @@ pub struct RefineReport {
     /// True when the criterion did not improve on the start axis, which is returned.
     pub kept_start: bool,
     /// True when the result should not be trusted without a look: the circles criterion
-    /// left the axis's radial position undetermined (on the synthetic corpus this flags
-    /// 9 of the 10 circles results more than 4 mm off (3 vessels) and 3 of 25 good ones),
-    /// the automatic refinement found nothing to refine by and kept its start, or the
+    /// left the axis's radial position undetermined (Eq. 2 rises too little when the axis
+    /// moves 2 mm along the fragment's radius), the automatic refinement found nothing to refine by and kept its start, or the
     /// tangent plane asked for by name turned the axis to or past the search bound.
     #[serde(default)]
     pub flagged: bool,

@@ -45,10 +45,8 @@ const REWEIGHT_ROUNDS: usize = 8;
 /// Neighbouring faces share vertices, and so their normals' noise: the standard error
 /// from independent residuals is multiplied by this.
 const CORRELATION_INFLATION: f64 = 5.0;
-/// The placement is kept when its inflated standard error is at most this, mm. On the
-/// synthetic corpus (`REFINE_ACCURACY_DUMP`) the placements that landed within 1.6 mm of
-/// the true axis had 0.3-1.0; floors without a turn agreed on no point (a tenth of
-/// their lines or fewer) whatever their standard error.
+/// The placement is kept when its inflated standard error is at most this, mm
+/// (`docs/calibration.md`).
 pub const MAX_POSITION_ERROR_MM: f64 = 1.0;
 /// ... and when at least this share of the lines agree with it ...
 const MIN_AGREEING_SHARE: f64 = 0.3;

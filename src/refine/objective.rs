@@ -122,21 +122,13 @@ impl<O: Objective + ?Sized> CostFunction for Problem<'_, O> {
 /// the best cost so far. The criteria cut the skins anew at every candidate, and moving
 /// the axis by a hundredth of a degree changes which triangles a plane cuts: their value
 /// jitters by a part in a thousand or more, so closer agreement only shrinks the simplex
-/// onto that jitter. An absolute 1e-14 mm^2 (the earlier setting) was never reached: every
-/// run took all its iterations, 800-900 for the circles criterion on a 10k-vertex body
-/// sherd (0.6-0.8 s), against 330-370 now. On the refinement corpus the axes are as good
-/// or better (`examples/refine_accuracy.rs`: auto 91.6 -> 92.2% within 4 mm, median
-/// 0.694 -> 0.674 deg, wrong and not flagged 1.8% both).
+/// onto that jitter (`docs/calibration.md`).
 pub const RELATIVE_COST_TOLERANCE: f64 = 1e-6;
 
 /// Another restart follows only a run that lowered the cost by more than this fraction.
 /// Smaller gains are the criteria's jitter (see [`RELATIVE_COST_TOLERANCE`]) or a polish
-/// that no longer moves the axis: on a 10k-vertex body sherd the restarts after a 0.4%
-/// gain took 211 of the circles search's 295 iterations and turned the axis by 0.007
-/// degrees (`cargo bench --bench refine`: the body sherd's refinement 140 -> 81 ms), and
-/// the refinement corpus gives the same axes (`examples/refine_accuracy.rs`: circles
-/// 89.8% within 4 mm, median 1.536 deg, and auto 92.2%, 0.673 -> 0.674 deg, with 1e-4
-/// and with 1e-2). With 1e-9 every search used all its restarts.
+/// that no longer moves the axis (`docs/calibration.md`). With 1e-9 every search used all
+/// its restarts.
 pub const MIN_RESTART_IMPROVEMENT: f64 = 1e-2;
 
 /// Minimises `objective` from `start` by restarted Nelder-Mead.
