@@ -20,7 +20,7 @@ use rayon::prelude::*;
 use sherd::mesh::io::read_mesh;
 use sherd::mesh::repair::{repair, RepairOptions};
 use sherd::mesh::{Point, Vector};
-use sherd::orient::{decimated_copy, mean_point_distance_mm, Axis, OrientOptions};
+use sherd::orient::{decimated_copy, mean_line_distance_mm, Axis, AxisRecord, OrientOptions};
 use sherd::refine::{refine, Criterion, RefineOptions};
 use sherd::statistics::nearest_rank_quantile;
 
@@ -35,16 +35,16 @@ struct Row {
     settled: Vec<Option<(f64, f64)>>,
 }
 
+/// The fields of a truth file (`sherd synth`'s or the report corpus's) this example reads.
+#[derive(serde::Deserialize)]
+struct Truth {
+    axis: AxisRecord,
+    part: String,
+}
+
 fn truth_axis(path: &Path) -> Option<(Axis, String)> {
-    let truth: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(path).ok()?).ok()?;
-    let triple = |v: &serde_json::Value| -> Option<[f64; 3]> {
-        let a = v.as_array()?;
-        Some([a.first()?.as_f64()?, a.get(1)?.as_f64()?, a.get(2)?.as_f64()?])
-    };
-    let point = triple(&truth["axis"]["point"])?;
-    let direction = triple(&truth["axis"]["direction"])?;
-    let part = truth["part"].as_str().unwrap_or("?").to_string();
-    Some((Axis::new(Point::from(point), Vector::from(direction).normalize()), part))
+    let truth: Truth = serde_json::from_str(&std::fs::read_to_string(path).ok()?).ok()?;
+    Some((Axis::from_record(&truth.axis)?, truth.part))
 }
 
 fn evaluate(ply: &Path) -> Option<Row> {
@@ -65,7 +65,7 @@ fn evaluate(ply: &Path) -> Option<Row> {
         .map(|&criterion| {
             let options = RefineOptions { criterion, ..RefineOptions::default() };
             let refined = refine(working, &start, &options).ok()?;
-            Some((mean_point_distance_mm(&mesh.positions, &refined.axis, &truth), refined.axis.line_angle_to_deg(&truth)))
+            Some((mean_line_distance_mm(&mesh.positions, &refined.axis, &truth), refined.axis.line_angle_to_deg(&truth)))
         })
         .collect();
     let name = ply.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();

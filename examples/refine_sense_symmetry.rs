@@ -13,7 +13,7 @@
 //! [CELL_MM] [NOISE_MM] [DEFORMATION]` (defaults: 2 vessels from seed 100, 0.8 mm cells,
 //! the generator's noise and deformation).
 
-use sherd::orient::{mean_point_distance_mm, orient_automatic, OrientOptions};
+use sherd::orient::{mean_line_distance_mm, orient_automatic, OrientOptions};
 use sherd::refine::{refine, Criterion, RefineOptions};
 use sherd::statistics::nearest_rank_quantile;
 use sherd::synth::{generate_vessel, VesselOptions};
@@ -51,9 +51,7 @@ fn main() {
                 let apart = from_start.axis.line_angle_to_deg(&from_flipped.axis);
                 apart_deg[slot].push(apart);
                 for (side, refined) in [&from_start, &from_flipped].into_iter().enumerate() {
-                    // The mean point distance with the sense aside: the nearer of the two senses.
-                    let distance = mean_point_distance_mm(&fragment.mesh.positions, &refined.axis, truth)
-                        .min(mean_point_distance_mm(&fragment.mesh.positions, &refined.axis.flipped(), truth));
+                    let distance = mean_line_distance_mm(&fragment.mesh.positions, &refined.axis, truth);
                     within[slot][side] += (distance <= 4.0) as usize;
                 }
                 line += &format!(" {criterion:?} {apart:.2} deg apart;");

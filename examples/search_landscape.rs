@@ -18,7 +18,7 @@ use std::time::Instant;
 
 use sherd::orient::landscape::{competing_valleys, sample_blocks};
 use sherd::orient::revolution_search::{descend, search, SearchOptions};
-use sherd::orient::{decimated_copy, mean_point_distance_mm, surface_of_revolution_lines, working_copy, OrientOptions};
+use sherd::orient::{decimated_copy, mean_line_distance_mm, surface_of_revolution_lines, working_copy, OrientOptions};
 use sherd::statistics::nearest_rank_quantile;
 use sherd::synth::{generate_vessel, VesselOptions};
 
@@ -55,7 +55,7 @@ fn main() {
                 .iter()
                 .map(|axis| {
                     let positions = &fragment.mesh.positions;
-                    mean_point_distance_mm(positions, axis, &truth).min(mean_point_distance_mm(positions, &axis.flipped(), &truth))
+                    mean_line_distance_mm(positions, axis, &truth)
                 })
                 .collect();
             let rank = distances.iter().position(|d| *d <= 4.0).unwrap_or(6).min(6);

@@ -175,6 +175,12 @@ pub fn mean_point_distance_mm(points: &[Point], estimated: &Axis, truth: &Axis) 
         / n
 }
 
+/// [`mean_point_distance_mm`] with up and down aside: the nearer of `estimated` and its
+/// flip, how far the estimated line lies from the true one.
+pub fn mean_line_distance_mm(points: &[Point], estimated: &Axis, truth: &Axis) -> f64 {
+    mean_point_distance_mm(points, estimated, truth).min(mean_point_distance_mm(points, &estimated.flipped(), truth))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

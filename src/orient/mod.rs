@@ -22,7 +22,7 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-pub use crate::axis::{angle_between_deg, mean_point_distance_mm, Axis, AxisRecord};
+pub use crate::axis::{angle_between_deg, mean_line_distance_mm, mean_point_distance_mm, Axis, AxisRecord};
 pub use surfaces::{segment_surfaces, Skin};
 pub use verdict::{Verdict, VerdictThresholds};
 
@@ -362,8 +362,7 @@ impl CompetitorReach {
     /// The reach of `unresolved` competitors from `axis`, over the fragment's `points`;
     /// `None` when there are none.
     fn of(unresolved: &[&landscape::CompetingValley], axis: &Axis, points: &[Point]) -> Option<Self> {
-        let line_distance_mm = |other: &Axis| mean_point_distance_mm(points, other, axis).min(mean_point_distance_mm(points, &other.flipped(), axis));
-        unresolved.iter().map(|c| CompetitorReach { angle_deg: c.angle_deg, distance_mm: line_distance_mm(&c.axis) }).reduce(|a, b| CompetitorReach {
+        unresolved.iter().map(|c| CompetitorReach { angle_deg: c.angle_deg, distance_mm: mean_line_distance_mm(points, &c.axis, axis) }).reduce(|a, b| CompetitorReach {
             angle_deg: a.angle_deg.max(b.angle_deg),
             distance_mm: a.distance_mm.max(b.distance_mm),
         })

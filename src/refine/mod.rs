@@ -47,9 +47,8 @@ use crate::{Error, Result};
 use objective::{run_guarded, CriterionRun, Objective, SearchSettings};
 use averaging::{averaged_with_profile, profile_from_start};
 pub use choice::chosen_criterion;
-pub(crate) use choice::{choose_criterion, Choice};
-pub(crate) use placement::{place_where_sections_allow, place_with, radial_curvature, search_shifts, MIN_PLACING_CURVATURE};
-use placement::{usable_section_count, PLACING_PROBE_MM};
+use choice::{choose_criterion, Choice};
+use placement::{radial_curvature, usable_section_count, MIN_PLACING_CURVATURE, PLACING_PROBE_MM};
 use sections::PreparedSurface;
 
 crate::vocabulary! {

@@ -28,10 +28,9 @@ use super::objective::{minimize, FreeParameters, Objective, SearchSettings};
 use super::sections::{AxisParameters, PreparedSurface};
 use crate::statistics::quantile;
 use super::tangent::{plane_section_count, TangentObjective};
-use super::{
-    choose_criterion, place_where_sections_allow, place_with, radial_curvature, search_shifts, Criterion, RefineOptions,
-    MIN_PLACING_CURVATURE,
-};
+use super::choice::{choose_criterion, Choice};
+use super::placement::{place_where_sections_allow, place_with, radial_curvature, search_shifts, MIN_PLACING_CURVATURE};
+use super::{Criterion, RefineOptions};
 use crate::mesh::{Mesh, Point};
 use crate::Error;
 use crate::orient::{mean_point_distance_mm, Axis};
@@ -172,7 +171,7 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
     }
     super::validate(mesh, axis, options)?;
     let surface = PreparedSurface::new(mesh, axis, options.surface, options.section_count)?;
-    let super::Choice { criterion: method, edge, levelled, .. } = choose_criterion(&surface, options);
+    let Choice { criterion: method, edge, levelled, .. } = choose_criterion(&surface, options);
     let section_count = surface.horizontal_sections(&super::sections::CandidateFrame::new(&[0.0; 4])).len();
     let settings = SearchSettings {
         free: options.free,
@@ -342,12 +341,12 @@ mod tests {
                 let tilted = [rng.random_range(-0.3f64..0.3).to_radians(), rng.random_range(-0.3f64..0.3).to_radians(), 0.0, 0.0];
                 let circles = CirclesObjective { surface: &surface, section_weights: Some(&weights) };
                 let searched = minimize(&circles, tilted, &settings).unwrap().parameters;
-                if crate::refine::radial_curvature(&circles, &searched) < crate::refine::MIN_PLACING_CURVATURE {
+                if crate::refine::placement::radial_curvature(&circles, &searched) < crate::refine::placement::MIN_PLACING_CURVATURE {
                     continue; // the placement is refused whoever finds it
                 }
                 // As the bootstrap uses it: a placement the skins do not fix is refused.
                 let placed = newton_placement(&circles, tilted)
-                    .filter(|placed| crate::refine::radial_curvature(&circles, placed) >= crate::refine::MIN_PLACING_CURVATURE);
+                    .filter(|placed| crate::refine::placement::radial_curvature(&circles, placed) >= crate::refine::placement::MIN_PLACING_CURVATURE);
                 let Some(placed) = placed else {
                     declined += 1;
                     continue;
