@@ -4,7 +4,7 @@
 use nalgebra::Vector2;
 
 use super::loss::{robust_loss, MAX_RADIUS_MM, MAX_TANGENTIAL_NORMAL, MIN_BAND_POINTS, OUTLIER_LOSS};
-use super::samples::{project, Projected, RevolutionSamples};
+use super::samples::{floor_index, project, Projected, RevolutionSamples};
 use crate::axis::Axis;
 use crate::axis::perpendicular_frame;
 
@@ -54,38 +54,45 @@ impl LineSums {
     }
 }
 
-/// Band tables indexed by key: a vector per kind and side, offset by the least index.
+/// Band tables in one vector: inward walls, outward walls, downward flats and upward flats,
+/// each run offset by its least index. A point's slot in it is found once per evaluation
+/// and read by every later pass instead of its key.
 pub(super) struct Bands<T> {
-    pub(super) wall: [Vec<T>; 2],
-    pub(super) flat: [Vec<T>; 2],
-    pub(super) wall_low: i64,
-    pub(super) flat_low: i64,
+    pub(super) table: Vec<T>,
+    wall_low: i64,
+    wall_len: usize,
+    flat_low: i64,
+    flat_len: usize,
 }
 
-impl<T: Default + Clone> Bands<T> {
-    pub(super) fn new(wall_range: (i64, i64), flat_range: (i64, i64)) -> Self {
+impl<T> Bands<T> {
+    /// Empty bands for wall indices in `wall_range` and flat ones in `flat_range`
+    /// (inclusive; an empty range where `low > high`).
+    pub(super) fn new(wall_range: (i64, i64), flat_range: (i64, i64)) -> Self
+    where
+        T: Default + Clone,
+    {
         let wall_len = (wall_range.1 - wall_range.0 + 1).max(0) as usize;
         let flat_len = (flat_range.1 - flat_range.0 + 1).max(0) as usize;
-        Bands {
-            wall: [vec![T::default(); wall_len], vec![T::default(); wall_len]],
-            flat: [vec![T::default(); flat_len], vec![T::default(); flat_len]],
-            wall_low: wall_range.0,
-            flat_low: flat_range.0,
+        Bands { table: vec![T::default(); 2 * (wall_len + flat_len)], wall_low: wall_range.0, wall_len, flat_low: flat_range.0, flat_len }
+    }
+
+    /// Tables of another kind over the same bands.
+    pub(super) fn map<U>(&self, f: impl FnMut(&T) -> U) -> Bands<U> {
+        Bands { table: self.table.iter().map(f).collect(), wall_low: self.wall_low, wall_len: self.wall_len, flat_low: self.flat_low, flat_len: self.flat_len }
+    }
+
+    /// The slot of a band in [`Bands::table`].
+    pub(super) fn slot(&self, key: BandKey) -> usize {
+        match key {
+            BandKey::Wall { outward, index } => outward as usize * self.wall_len + (index - self.wall_low) as usize,
+            BandKey::Flat { upward, index } => 2 * self.wall_len + upward as usize * self.flat_len + (index - self.flat_low) as usize,
         }
     }
 
-    pub(super) fn get_mut(&mut self, key: BandKey) -> &mut T {
-        match key {
-            BandKey::Wall { outward, index } => &mut self.wall[outward as usize][(index - self.wall_low) as usize],
-            BandKey::Flat { upward, index } => &mut self.flat[upward as usize][(index - self.flat_low) as usize],
-        }
-    }
-
-    pub(super) fn get(&self, key: BandKey) -> &T {
-        match key {
-            BandKey::Wall { outward, index } => &self.wall[outward as usize][(index - self.wall_low) as usize],
-            BandKey::Flat { upward, index } => &self.flat[upward as usize][(index - self.flat_low) as usize],
-        }
+    /// The wall bands, inward then outward, each by rising index.
+    pub(super) fn walls(&self) -> &[T] {
+        &self.table[..2 * self.wall_len]
     }
 }
 
@@ -99,35 +106,36 @@ pub(super) struct Placed {
     /// band width: a residual in millimetres beside the distance to the band's line.
     tangential_mm: f64,
     pub(super) key: Option<BandKey>,
+    /// The band's slot in the evaluation's tables ([`Bands::slot`]), [`NO_SLOT`] off
+    /// the surface of revolution or before the evaluation has placed it.
+    pub(super) slot: u32,
 }
 
-/// `value.floor() as i64` without `f64::floor`, which is a call into libm on the baseline
-/// target and was a twentieth of the search's instructions (placing every point in its
-/// band, for every candidate axis).
-fn floor_index(value: f64) -> i64 {
-    let truncated = value as i64;
-    truncated.saturating_sub(((truncated as f64) > value) as i64)
-}
+/// The slot of a point in no band.
+pub(super) const NO_SLOT: u32 = u32::MAX;
 
+/// The point's place under the axis through `centre`; `band_mm` is the samples' band
+/// width, which their wall band indices were taken with.
+#[inline]
 pub(super) fn place(p: &Projected, centre: &Vector2<f64>, band_mm: f64) -> Placed {
     let offset = p.planar - centre;
     let radius = offset.norm();
     if !(radius > 1e-9) || radius > MAX_RADIUS_MM {
-        return Placed { radius, height: p.height, tangential_mm: 0.0, key: None };
+        return Placed { radius, height: p.height, tangential_mm: 0.0, key: None, slot: NO_SLOT };
     }
     let radial = offset / radius;
     let normal_radial = p.normal_planar.dot(&radial);
     let normal_tangential = p.normal_planar.x * radial.y - p.normal_planar.y * radial.x;
     let tangential_mm = normal_tangential * band_mm;
     if normal_tangential.abs() > MAX_TANGENTIAL_NORMAL {
-        return Placed { radius, height: p.height, tangential_mm, key: None };
+        return Placed { radius, height: p.height, tangential_mm, key: None, slot: NO_SLOT };
     }
     let key = if normal_radial.abs() >= p.normal_axial.abs() {
-        BandKey::Wall { outward: normal_radial > 0.0, index: floor_index(p.height / band_mm) }
+        BandKey::Wall { outward: normal_radial > 0.0, index: p.wall_band }
     } else {
         BandKey::Flat { upward: p.normal_axial > 0.0, index: floor_index(radius / band_mm) }
     };
-    Placed { radius, height: p.height, tangential_mm, key: Some(key) }
+    Placed { radius, height: p.height, tangential_mm, key: Some(key), slot: NO_SLOT }
 }
 
 /// A band's total-least-squares line in the rz half-plane: its mean point and unit normal.
@@ -144,7 +152,7 @@ pub(super) struct BandEvaluation {
 impl BandEvaluation {
     /// The line of a placed point's band, if it has one.
     pub(super) fn line_of(&self, at: &Placed) -> Option<BandLine> {
-        at.key.and_then(|key| *self.lines.get(key))
+        self.lines.table.get(at.slot as usize).copied().flatten()
     }
 }
 
@@ -161,27 +169,26 @@ fn point_loss(at: &Placed, line: BandLine, loss_scale_mm: f64) -> f64 {
 /// The robust mean loss of the points about the axis through `centre` along the frame's
 /// direction, with the share of the weight on the surface of revolution.
 pub(super) fn evaluate_bands(points: &[Projected], centre: &Vector2<f64>, band_mm: f64, loss_scale_mm: f64) -> BandEvaluation {
-    let placed: Vec<Placed> = points.iter().map(|p| place(p, centre, band_mm)).collect();
+    let mut placed: Vec<Placed> = Vec::with_capacity(points.len());
     let (mut wall, mut flat) = ((i64::MAX, i64::MIN), (i64::MAX, i64::MIN));
-    for p in &placed {
-        match p.key {
+    for p in points {
+        let at = place(p, centre, band_mm);
+        match at.key {
             Some(BandKey::Wall { index, .. }) => wall = (wall.0.min(index), wall.1.max(index)),
             Some(BandKey::Flat { index, .. }) => flat = (flat.0.min(index), flat.1.max(index)),
             None => {}
         }
+        placed.push(at);
     }
     let mut bands: Bands<LineSums> = Bands::new(wall, flat);
-    for (p, at) in points.iter().zip(&placed) {
+    for (p, at) in points.iter().zip(&mut placed) {
         if let Some(key) = at.key {
-            bands.get_mut(key).add(at.radius, at.height, p.weight);
+            let slot = bands.slot(key);
+            at.slot = slot as u32;
+            bands.table[slot].add(at.radius, at.height, p.weight);
         }
     }
-    let lines: Bands<Option<BandLine>> = Bands {
-        wall: bands.wall.map(|v| v.iter().map(LineSums::line).collect()),
-        flat: bands.flat.map(|v| v.iter().map(LineSums::line).collect()),
-        wall_low: bands.wall_low,
-        flat_low: bands.flat_low,
-    };
+    let lines: Bands<Option<BandLine>> = bands.map(LineSums::line);
     let mut evaluation = BandEvaluation { placed, lines, cost: 0.0, inlier_share: 0.0 };
     let (mut total, mut weight, mut inlier) = (0.0, 0.0, 0.0);
     for (p, at) in points.iter().zip(&evaluation.placed) {
@@ -213,16 +220,4 @@ pub fn point_losses(samples: &RevolutionSamples, axis: &Axis, loss_scale_mm: f64
         .iter()
         .map(|at| evaluation.line_of(at).map_or(OUTLIER_LOSS, |line| point_loss(at, line, loss_scale_mm)))
         .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn floor_index_is_floor() {
-        for value in [-2.5, -2.0, -1e-12, -0.0, 0.0, 1e-12, 0.999_999, 1.0, 3.5, 1e20, -1e20, f64::NAN] {
-            assert_eq!(floor_index(value), value.floor() as i64, "{value}");
-        }
-    }
 }

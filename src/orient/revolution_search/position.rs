@@ -3,7 +3,7 @@
 
 use nalgebra::{Matrix2, Vector2};
 
-use super::bands::{evaluate_bands, place, residual, BandEvaluation, BandKey, Bands, Placed};
+use super::bands::{evaluate_bands, place, residual, BandEvaluation, BandKey, Bands, Placed, NO_SLOT};
 use super::loss::{robust_weight, MIN_BAND_POINTS};
 use super::samples::{project, Projected, RevolutionSamples};
 use crate::mesh::Vector;
@@ -136,7 +136,8 @@ fn wall_circles_centre(points: &[Projected], start: &Vector2<f64>, band_mm: f64)
         let (x, y, h) = (q.x, q.y, p.height);
         let big_q = x * x + y * y;
         let w = p.weight;
-        let sums = bands.get_mut(key);
+        let slot = bands.slot(key);
+        let sums = &mut bands.table[slot];
         sums.count += 1;
         let s = &mut sums.s;
         s[0] += w;
@@ -156,7 +157,7 @@ fn wall_circles_centre(points: &[Projected], start: &Vector2<f64>, band_mm: f64)
     }
     let (mut a, mut b) = (Matrix2::zeros(), Vector2::zeros());
     let mut used = 0;
-    for sums in bands.wall.iter().flatten() {
+    for sums in bands.walls() {
         if sums.count < MIN_BAND_POINTS {
             continue;
         }
@@ -203,32 +204,28 @@ fn position_step(points: &[Projected], evaluation: &BandEvaluation, centre: &Vec
         weight: f64,
         sum: Vector2<f64>,
     }
-    let mut moves: Bands<MeanMove> = Bands {
-        wall: evaluation.lines.wall.clone().map(|v| vec![MeanMove::default(); v.len()]),
-        flat: evaluation.lines.flat.clone().map(|v| vec![MeanMove::default(); v.len()]),
-        wall_low: evaluation.lines.wall_low,
-        flat_low: evaluation.lines.flat_low,
-    };
-    let mut rows: Vec<(Option<BandKey>, Vector2<f64>, f64, f64)> = Vec::with_capacity(points.len());
+    let mut moves: Bands<MeanMove> = evaluation.lines.map(|_| MeanMove::default());
+    let mut rows: Vec<(u32, Vector2<f64>, f64, f64)> = Vec::with_capacity(points.len());
     for (p, at) in points.iter().zip(&evaluation.placed) {
         let Some(line) = evaluation.line_of(at) else {
-            rows.push((None, Vector2::zeros(), 0.0, 0.0));
+            rows.push((NO_SLOT, Vector2::zeros(), 0.0, 0.0));
             continue;
         };
         let r = residual(at, line);
         let radial = (p.planar - centre) / at.radius;
         let jacobian = -radial * line.1[0];
         let w = p.weight * robust_weight(r, loss_scale_mm);
-        let key = at.key.expect("a line has a band");
-        let entry = moves.get_mut(key);
+        let entry = &mut moves.table[at.slot as usize];
         entry.weight += w;
         entry.sum += jacobian * w;
-        rows.push((Some(key), jacobian, r, w));
+        rows.push((at.slot, jacobian, r, w));
     }
     let (mut normal, mut rhs) = (Matrix2::zeros(), Vector2::zeros());
-    for (key, jacobian, r, w) in rows {
-        let Some(key) = key else { continue };
-        let mean = moves.get(key);
+    for (slot, jacobian, r, w) in rows {
+        if slot == NO_SLOT {
+            continue;
+        }
+        let mean = &moves.table[slot as usize];
         let centred = jacobian - mean.sum / mean.weight.max(1e-300);
         normal += centred * centred.transpose() * w;
         rhs += centred * (r * w);

@@ -184,10 +184,11 @@ impl<'a> PlaneLocator<'a> {
         if self.planes_per_mm == 0.0 || !z.is_finite() {
             return heights.partition_point(|&h| h <= z);
         }
-        // Truncation after the clamp is the floor (`f64::floor` is a call into libm
-        // on the baseline target); the loops below make any estimate exact.
+        // Truncation of a positive estimate is the floor (`f64::floor` is a call into
+        // libm on the baseline target, `f64::clamp` checks its bounds on every call);
+        // the loops below make any estimate exact.
         let estimate = (z - heights[0]) * self.planes_per_mm + 1.0;
-        let mut count = estimate.clamp(0.0, heights.len() as f64) as usize;
+        let mut count = if estimate > 0.0 { (estimate as usize).min(heights.len()) } else { 0 };
         while count > 0 && heights[count - 1] > z {
             count -= 1;
         }
