@@ -4,7 +4,7 @@
 use nalgebra::Vector2;
 
 use super::loss::{robust_loss, MAX_RADIUS_MM, MAX_TANGENTIAL_NORMAL, MIN_BAND_POINTS, OUTLIER_LOSS};
-use super::samples::{floor_index, project, Projected, RevolutionSamples};
+use super::samples::{floor_index, project, Projected, ProjectedSamples, RevolutionSamples};
 use crate::axis::Axis;
 use crate::axis::perpendicular_frame;
 
@@ -65,16 +65,29 @@ pub(super) struct Bands<T> {
     flat_len: usize,
 }
 
+/// The number of indices in an inclusive range, 0 where `low > high`.
+fn range_len((low, high): (i64, i64)) -> usize {
+    (high - low + 1).max(0) as usize
+}
+
 impl<T> Bands<T> {
-    /// Empty bands for wall indices in `wall_range` and flat ones in `flat_range`
-    /// (inclusive; an empty range where `low > high`).
-    pub(super) fn new(wall_range: (i64, i64), flat_range: (i64, i64)) -> Self
+    /// Empty wall bands for indices in `wall_range` (inclusive), and no flat bands yet.
+    pub(super) fn walls_only(wall_range: (i64, i64)) -> Self
     where
         T: Default + Clone,
     {
-        let wall_len = (wall_range.1 - wall_range.0 + 1).max(0) as usize;
-        let flat_len = (flat_range.1 - flat_range.0 + 1).max(0) as usize;
-        Bands { table: vec![T::default(); 2 * (wall_len + flat_len)], wall_low: wall_range.0, wall_len, flat_low: flat_range.0, flat_len }
+        let wall_len = range_len(wall_range);
+        Bands { table: vec![T::default(); 2 * wall_len], wall_low: wall_range.0, wall_len, flat_low: 0, flat_len: 0 }
+    }
+
+    /// Adds empty flat bands for indices in `flat_range` (inclusive) after the walls.
+    fn add_flats(&mut self, flat_range: (i64, i64))
+    where
+        T: Default + Clone,
+    {
+        self.flat_low = flat_range.0;
+        self.flat_len = range_len(flat_range);
+        self.table.resize(2 * (self.wall_len + self.flat_len), T::default());
     }
 
     /// Tables of another kind over the same bands.
@@ -168,31 +181,44 @@ fn point_loss(at: &Placed, line: BandLine, loss_scale_mm: f64) -> f64 {
 
 /// The robust mean loss of the points about the axis through `centre` along the frame's
 /// direction, with the share of the weight on the surface of revolution.
-pub(super) fn evaluate_bands(points: &[Projected], centre: &Vector2<f64>, band_mm: f64, loss_scale_mm: f64) -> BandEvaluation {
+pub(super) fn evaluate_bands(projected: &ProjectedSamples, centre: &Vector2<f64>, loss_scale_mm: f64) -> BandEvaluation {
+    let points = &projected.points;
+    // The wall bands' range is the direction's; the flat bands' depends on the position
+    // and is only known once every point is placed, so their sums wait for a second pass
+    // over the few points on them. Each band still sums its points in their order.
+    let mut bands: Bands<LineSums> = Bands::walls_only(projected.wall_range);
     let mut placed: Vec<Placed> = Vec::with_capacity(points.len());
-    let (mut wall, mut flat) = ((i64::MAX, i64::MIN), (i64::MAX, i64::MIN));
+    let mut on_flats: Vec<usize> = Vec::new();
+    let mut flat = (i64::MAX, i64::MIN);
     for p in points {
-        let at = place(p, centre, band_mm);
+        let mut at = place(p, centre, projected.band_mm);
         match at.key {
-            Some(BandKey::Wall { index, .. }) => wall = (wall.0.min(index), wall.1.max(index)),
-            Some(BandKey::Flat { index, .. }) => flat = (flat.0.min(index), flat.1.max(index)),
+            Some(key @ BandKey::Wall { .. }) => {
+                let slot = bands.slot(key);
+                at.slot = slot as u32;
+                bands.table[slot].add(at.radius, at.height, p.weight);
+            }
+            Some(BandKey::Flat { index, .. }) => {
+                flat = (flat.0.min(index), flat.1.max(index));
+                on_flats.push(placed.len());
+            }
             None => {}
         }
         placed.push(at);
     }
-    let mut bands: Bands<LineSums> = Bands::new(wall, flat);
-    for (p, at) in points.iter().zip(&mut placed) {
-        if let Some(key) = at.key {
-            let slot = bands.slot(key);
+    if !on_flats.is_empty() {
+        bands.add_flats(flat);
+        for &i in &on_flats {
+            let at = &mut placed[i];
+            let slot = bands.slot(at.key.expect("a point on a flat band has its key"));
             at.slot = slot as u32;
-            bands.table[slot].add(at.radius, at.height, p.weight);
+            bands.table[slot].add(at.radius, at.height, points[i].weight);
         }
     }
     let lines: Bands<Option<BandLine>> = bands.map(LineSums::line);
     let mut evaluation = BandEvaluation { placed, lines, cost: 0.0, inlier_share: 0.0 };
-    let (mut total, mut weight, mut inlier) = (0.0, 0.0, 0.0);
+    let (mut total, mut inlier) = (0.0, 0.0);
     for (p, at) in points.iter().zip(&evaluation.placed) {
-        weight += p.weight;
         match evaluation.line_of(at) {
             Some(line) => {
                 total += p.weight * point_loss(at, line, loss_scale_mm);
@@ -201,8 +227,8 @@ pub(super) fn evaluate_bands(points: &[Projected], centre: &Vector2<f64>, band_m
             None => total += p.weight * OUTLIER_LOSS,
         }
     }
-    evaluation.cost = total / weight.max(1e-300);
-    evaluation.inlier_share = inlier / weight.max(1e-300);
+    evaluation.cost = total / projected.weight.max(1e-300);
+    evaluation.inlier_share = inlier / projected.weight.max(1e-300);
     evaluation
 }
 
@@ -211,10 +237,10 @@ pub(super) fn evaluate_bands(points: &[Projected], centre: &Vector2<f64>, band_m
 pub fn point_losses(samples: &RevolutionSamples, axis: &Axis, loss_scale_mm: f64) -> Vec<f64> {
     let d = axis.direction.into_inner();
     let (e1, e2) = perpendicular_frame(&d);
-    let points = project(samples, &d, &e1, &e2);
+    let projected = project(samples, &d, &e1, &e2);
     let offset = axis.point - samples.centroid;
     let centre = Vector2::new(offset.dot(&e1), offset.dot(&e2));
-    let evaluation = evaluate_bands(&points, &centre, samples.band_mm, loss_scale_mm);
+    let evaluation = evaluate_bands(&projected, &centre, loss_scale_mm);
     evaluation
         .placed
         .iter()

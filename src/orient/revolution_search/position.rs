@@ -3,9 +3,9 @@
 
 use nalgebra::{Matrix2, Vector2};
 
-use super::bands::{evaluate_bands, place, residual, BandEvaluation, BandKey, Bands, Placed, NO_SLOT};
+use super::bands::{evaluate_bands, place, residual, BandEvaluation, BandKey, Bands, NO_SLOT};
 use super::loss::{robust_weight, MIN_BAND_POINTS};
-use super::samples::{project, Projected, RevolutionSamples};
+use super::samples::{project, Projected, ProjectedSamples, RevolutionSamples};
 use crate::mesh::Vector;
 use crate::axis::perpendicular_frame;
 
@@ -113,7 +113,7 @@ fn normal_line_centre(points: &[Projected], scale_rad: f64) -> Option<Vector2<f6
 /// band's own coefficients, so after the band's own mean and slope are projected out
 /// `|q|^2` is linear in `c` alone. Solved about `start`; `None` when the bands do not fix
 /// it (too few, or all on one short arc in one direction).
-fn wall_circles_centre(points: &[Projected], start: &Vector2<f64>, band_mm: f64) -> Option<Vector2<f64>> {
+fn wall_circles_centre(projected: &ProjectedSamples, start: &Vector2<f64>) -> Option<Vector2<f64>> {
     // Per band: sums of w times 1, h, h^2, and of x, y, Q and their products with h, and
     // the cross products, for the projection onto the complement of [1, h].
     #[derive(Clone, Copy, Default)]
@@ -121,17 +121,10 @@ fn wall_circles_centre(points: &[Projected], start: &Vector2<f64>, band_mm: f64)
         count: usize,
         s: [f64; 14],
     }
-    let placed: Vec<Placed> = points.iter().map(|p| place(p, start, band_mm)).collect();
-    let (low, high) = placed.iter().fold((i64::MAX, i64::MIN), |(lo, hi), p| match p.key {
-        Some(BandKey::Wall { index, .. }) => (lo.min(index), hi.max(index)),
-        _ => (lo, hi),
-    });
-    if low > high {
-        return None;
-    }
-    let mut bands: Bands<KasaSums> = Bands::new((low, high), (0, -1));
-    for (p, at) in points.iter().zip(&placed) {
-        let Some(key @ BandKey::Wall { .. }) = at.key else { continue };
+    let band_mm = projected.band_mm;
+    let mut bands: Bands<KasaSums> = Bands::walls_only(projected.wall_range);
+    for p in &projected.points {
+        let Some(key @ BandKey::Wall { .. }) = place(p, start, band_mm).key else { continue };
         let q = p.planar - start;
         let (x, y, h) = (q.x, q.y, p.height);
         let big_q = x * x + y * y;
@@ -198,15 +191,15 @@ fn wall_circles_centre(points: &[Projected], start: &Vector2<f64>, band_mm: f64)
 /// residual moves with the centre by the band line's radial normal times the radial
 /// direction, less its band's mean move (the band's line follows its points' mean), and
 /// the Cauchy weights of the loss. `None` when the bands do not fix the position.
-fn position_step(points: &[Projected], evaluation: &BandEvaluation, centre: &Vector2<f64>, loss_scale_mm: f64) -> Option<Vector2<f64>> {
+fn position_step(projected: &ProjectedSamples, evaluation: &BandEvaluation, centre: &Vector2<f64>, loss_scale_mm: f64) -> Option<Vector2<f64>> {
     #[derive(Clone, Copy, Default)]
     struct MeanMove {
         weight: f64,
         sum: Vector2<f64>,
     }
     let mut moves: Bands<MeanMove> = evaluation.lines.map(|_| MeanMove::default());
-    let mut rows: Vec<(u32, Vector2<f64>, f64, f64)> = Vec::with_capacity(points.len());
-    for (p, at) in points.iter().zip(&evaluation.placed) {
+    let mut rows: Vec<(u32, Vector2<f64>, f64, f64)> = Vec::with_capacity(projected.points.len());
+    for (p, at) in projected.points.iter().zip(&evaluation.placed) {
         let Some(line) = evaluation.line_of(at) else {
             rows.push((NO_SLOT, Vector2::zeros(), 0.0, 0.0));
             continue;
@@ -235,16 +228,16 @@ fn position_step(points: &[Projected], evaluation: &BandEvaluation, centre: &Vec
 
 /// The position polished by robust Gauss-Newton steps from `start`, each kept only where
 /// it lowers the score (halved up to three times otherwise).
-fn polish_position(points: &[Projected], start: Vector2<f64>, band_mm: f64, loss_scale_mm: f64, steps: usize) -> (Vector2<f64>, BandEvaluation) {
+fn polish_position(projected: &ProjectedSamples, start: Vector2<f64>, loss_scale_mm: f64, steps: usize) -> (Vector2<f64>, BandEvaluation) {
     let mut centre = start;
-    let mut evaluation = evaluate_bands(points, &centre, band_mm, loss_scale_mm);
+    let mut evaluation = evaluate_bands(projected, &centre, loss_scale_mm);
     for _ in 0..steps {
-        let Some(step) = position_step(points, &evaluation, &centre, loss_scale_mm) else { break };
+        let Some(step) = position_step(projected, &evaluation, &centre, loss_scale_mm) else { break };
         let mut scale = 1.0;
         let mut improved = false;
         for _ in 0..4 {
             let candidate = centre + step * scale;
-            let trial = evaluate_bands(points, &candidate, band_mm, loss_scale_mm);
+            let trial = evaluate_bands(projected, &candidate, loss_scale_mm);
             if trial.cost < evaluation.cost {
                 centre = candidate;
                 evaluation = trial;
@@ -273,21 +266,20 @@ const POLISH_STEPS: usize = 4;
 pub(super) fn fit_direction_with(samples: &RevolutionSamples, direction: &Vector, loss_scale_mm: f64, polish_steps: usize) -> DirectionFit {
     let d = direction.normalize();
     let (e1, e2) = perpendicular_frame(&d);
-    let points = project(samples, &d, &e1, &e2);
-    let band = samples.band_mm;
-    let (centre, position_fixed) = match normal_line_centre(&points, NORMAL_LINE_SCALE_RAD) {
+    let projected = project(samples, &d, &e1, &e2);
+    let (centre, position_fixed) = match normal_line_centre(&projected.points, NORMAL_LINE_SCALE_RAD) {
         Some(by_normals) => {
             // The circles' fit is exact on a surface of revolution and the normals' is not;
             // where the walls give no circles the polish starts from the normals'.
-            (wall_circles_centre(&points, &by_normals, band).unwrap_or(by_normals), true)
+            (wall_circles_centre(&projected, &by_normals).unwrap_or(by_normals), true)
         }
         // No position: a flat piece, scored about its centroid's line.
         None => (Vector2::zeros(), false),
     };
     let (centre, evaluation) = if position_fixed {
-        polish_position(&points, centre, band, loss_scale_mm, polish_steps)
+        polish_position(&projected, centre, loss_scale_mm, polish_steps)
     } else {
-        let evaluation = evaluate_bands(&points, &centre, band, loss_scale_mm);
+        let evaluation = evaluate_bands(&projected, &centre, loss_scale_mm);
         (centre, evaluation)
     };
     DirectionFit {

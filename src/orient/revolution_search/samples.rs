@@ -100,8 +100,21 @@ pub(super) fn floor_index(value: f64) -> i64 {
     truncated.saturating_sub(((truncated as f64) > value) as i64)
 }
 
-pub(super) fn project(samples: &RevolutionSamples, d: &Vector, e1: &Vector, e2: &Vector) -> Vec<Projected> {
-    samples
+/// The samples in the frame of one candidate direction, with what does not depend on
+/// the axis's position along it.
+pub(super) struct ProjectedSamples {
+    pub(super) points: Vec<Projected>,
+    /// The least and greatest wall band index of the points: every wall band any trial
+    /// position can fill.
+    pub(super) wall_range: (i64, i64),
+    /// The samples' band width, mm.
+    pub(super) band_mm: f64,
+    /// The points' total weight.
+    pub(super) weight: f64,
+}
+
+pub(super) fn project(samples: &RevolutionSamples, d: &Vector, e1: &Vector, e2: &Vector) -> ProjectedSamples {
+    let points: Vec<Projected> = samples
         .points
         .iter()
         .zip(&samples.normals)
@@ -117,7 +130,10 @@ pub(super) fn project(samples: &RevolutionSamples, d: &Vector, e1: &Vector, e2: 
                 wall_band: floor_index(height / samples.band_mm),
             }
         })
-        .collect()
+        .collect();
+    let wall_range = points.iter().fold((i64::MAX, i64::MIN), |(low, high), p| (low.min(p.wall_band), high.max(p.wall_band)));
+    let weight = points.iter().fold(0.0, |total, p| total + p.weight);
+    ProjectedSamples { points, wall_range, band_mm: samples.band_mm, weight }
 }
 
 #[cfg(test)]
