@@ -109,16 +109,15 @@ impl<T> Bands<T> {
     }
 }
 
-/// A point in the rz half-plane of a candidate axis with its band, or `None` off the
-/// surface of revolution.
+/// A point in the rz half-plane of a candidate axis (its height is its [`Projected`]'s)
+/// and its band's slot. Kept small: an evaluation writes one per point and reads it back
+/// in each later pass.
 #[derive(Clone, Copy)]
 pub(super) struct Placed {
     pub(super) radius: f64,
-    height: f64,
     /// The normal's turn out of the meridian plane (its component across it) times the
     /// band width: a residual in millimetres beside the distance to the band's line.
     tangential_mm: f64,
-    pub(super) key: Option<BandKey>,
     /// The band's slot in the evaluation's tables ([`Bands::slot`]), [`NO_SLOT`] off
     /// the surface of revolution or before the evaluation has placed it.
     pub(super) slot: u32,
@@ -127,28 +126,29 @@ pub(super) struct Placed {
 /// The slot of a point in no band.
 pub(super) const NO_SLOT: u32 = u32::MAX;
 
-/// The point's place under the axis through `centre`; `band_mm` is the samples' band
-/// width, which their wall band indices were taken with.
+/// The point's place under the axis through `centre`, and its band, `None` off the
+/// surface of revolution; `band_mm` is the samples' band width, which their wall band
+/// indices were taken with.
 #[inline]
-pub(super) fn place(p: &Projected, centre: &Vector2<f64>, band_mm: f64) -> Placed {
+pub(super) fn place(p: &Projected, centre: &Vector2<f64>, band_mm: f64) -> (Placed, Option<BandKey>) {
     let offset = p.planar - centre;
     let radius = offset.norm();
     if !(radius > 1e-9) || radius > MAX_RADIUS_MM {
-        return Placed { radius, height: p.height, tangential_mm: 0.0, key: None, slot: NO_SLOT };
+        return (Placed { radius, tangential_mm: 0.0, slot: NO_SLOT }, None);
     }
     let radial = offset / radius;
     let normal_radial = p.normal_planar.dot(&radial);
     let normal_tangential = p.normal_planar.x * radial.y - p.normal_planar.y * radial.x;
     let tangential_mm = normal_tangential * band_mm;
     if normal_tangential.abs() > MAX_TANGENTIAL_NORMAL {
-        return Placed { radius, height: p.height, tangential_mm, key: None, slot: NO_SLOT };
+        return (Placed { radius, tangential_mm, slot: NO_SLOT }, None);
     }
     let key = if normal_radial.abs() >= p.normal_axial.abs() {
         BandKey::Wall { outward: normal_radial > 0.0, index: p.wall_band }
     } else {
         BandKey::Flat { upward: p.normal_axial > 0.0, index: floor_index(radius / band_mm) }
     };
-    Placed { radius, height: p.height, tangential_mm, key: Some(key), slot: NO_SLOT }
+    (Placed { radius, tangential_mm, slot: NO_SLOT }, Some(key))
 }
 
 /// A band's total-least-squares line in the rz half-plane: its mean point and unit normal.
@@ -169,14 +169,15 @@ impl BandEvaluation {
     }
 }
 
-pub(super) fn residual(at: &Placed, (mean, normal): BandLine) -> f64 {
-    (at.radius - mean[0]) * normal[0] + (at.height - mean[1]) * normal[1]
+/// The distance of the point at `height` placed as `at` from its band's line.
+pub(super) fn residual(at: &Placed, height: f64, (mean, normal): BandLine) -> f64 {
+    (at.radius - mean[0]) * normal[0] + (height - mean[1]) * normal[1]
 }
 
 /// The robust loss of a point on its band: its distance to the band's line and its
 /// normal's turn out of the meridian plane (Wilczek et al. 2018, Fig. 1 a and c at once).
-fn point_loss(at: &Placed, line: BandLine, loss_scale_mm: f64) -> f64 {
-    robust_loss(residual(at, line).powi(2) + at.tangential_mm.powi(2), loss_scale_mm)
+fn point_loss(at: &Placed, height: f64, line: BandLine, loss_scale_mm: f64) -> f64 {
+    robust_loss(residual(at, height, line).powi(2) + at.tangential_mm.powi(2), loss_scale_mm)
 }
 
 /// The robust mean loss of the points about the axis through `centre` along the frame's
@@ -188,19 +189,19 @@ pub(super) fn evaluate_bands(projected: &ProjectedSamples, centre: &Vector2<f64>
     // over the few points on them. Each band still sums its points in their order.
     let mut bands: Bands<LineSums> = Bands::walls_only(projected.wall_range);
     let mut placed: Vec<Placed> = Vec::with_capacity(points.len());
-    let mut on_flats: Vec<usize> = Vec::new();
+    let mut on_flats: Vec<(usize, BandKey)> = Vec::new();
     let mut flat = (i64::MAX, i64::MIN);
     for p in points {
-        let mut at = place(p, centre, projected.band_mm);
-        match at.key {
+        let (mut at, key) = place(p, centre, projected.band_mm);
+        match key {
             Some(key @ BandKey::Wall { .. }) => {
                 let slot = bands.slot(key);
                 at.slot = slot as u32;
-                bands.table[slot].add(at.radius, at.height, p.weight);
+                bands.table[slot].add(at.radius, p.height, p.weight);
             }
-            Some(BandKey::Flat { index, .. }) => {
+            Some(key @ BandKey::Flat { index, .. }) => {
                 flat = (flat.0.min(index), flat.1.max(index));
-                on_flats.push(placed.len());
+                on_flats.push((placed.len(), key));
             }
             None => {}
         }
@@ -208,11 +209,11 @@ pub(super) fn evaluate_bands(projected: &ProjectedSamples, centre: &Vector2<f64>
     }
     if !on_flats.is_empty() {
         bands.add_flats(flat);
-        for &i in &on_flats {
+        for &(i, key) in &on_flats {
             let at = &mut placed[i];
-            let slot = bands.slot(at.key.expect("a point on a flat band has its key"));
+            let slot = bands.slot(key);
             at.slot = slot as u32;
-            bands.table[slot].add(at.radius, at.height, points[i].weight);
+            bands.table[slot].add(at.radius, points[i].height, points[i].weight);
         }
     }
     let lines: Bands<Option<BandLine>> = bands.map(LineSums::line);
@@ -221,7 +222,7 @@ pub(super) fn evaluate_bands(projected: &ProjectedSamples, centre: &Vector2<f64>
     for (p, at) in points.iter().zip(&evaluation.placed) {
         match evaluation.line_of(at) {
             Some(line) => {
-                total += p.weight * point_loss(at, line, loss_scale_mm);
+                total += p.weight * point_loss(at, p.height, line, loss_scale_mm);
                 inlier += p.weight;
             }
             None => total += p.weight * OUTLIER_LOSS,
@@ -244,6 +245,7 @@ pub fn point_losses(samples: &RevolutionSamples, axis: &Axis, loss_scale_mm: f64
     evaluation
         .placed
         .iter()
-        .map(|at| evaluation.line_of(at).map_or(OUTLIER_LOSS, |line| point_loss(at, line, loss_scale_mm)))
+        .zip(&projected.points)
+        .map(|(at, p)| evaluation.line_of(at).map_or(OUTLIER_LOSS, |line| point_loss(at, p.height, line, loss_scale_mm)))
         .collect()
 }

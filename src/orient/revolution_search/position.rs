@@ -124,7 +124,7 @@ fn wall_circles_centre(projected: &ProjectedSamples, start: &Vector2<f64>) -> Op
     let band_mm = projected.band_mm;
     let mut bands: Bands<KasaSums> = Bands::walls_only(projected.wall_range);
     for p in &projected.points {
-        let Some(key @ BandKey::Wall { .. }) = place(p, start, band_mm).key else { continue };
+        let Some(key @ BandKey::Wall { .. }) = place(p, start, band_mm).1 else { continue };
         let q = p.planar - start;
         let (x, y, h) = (q.x, q.y, p.height);
         let big_q = x * x + y * y;
@@ -204,7 +204,7 @@ fn position_step(projected: &ProjectedSamples, evaluation: &BandEvaluation, cent
             rows.push((NO_SLOT, Vector2::zeros(), 0.0, 0.0));
             continue;
         };
-        let r = residual(at, line);
+        let r = residual(at, p.height, line);
         let radial = (p.planar - centre) / at.radius;
         let jacobian = -radial * line.1[0];
         let w = p.weight * robust_weight(r, loss_scale_mm);
