@@ -56,15 +56,10 @@ crate::vocabulary! {
 impl Default for ProfileMethod {
     /// The spline with knots 1.5 mm apart: fine enough for a lip's rounding and a
     /// carination, so that what is left at the vessel's axis is the scan's noise and the
-    /// vessel's irregularity, not the profile model's stiffness. A polynomial of degree 6
-    /// leaves lips and carinations misfitted by 0.7 mm RMS, and the tilt that best spreads
-    /// that misfit is several degrees off (synthetic rim seed 13: 0.4 degrees at the start,
-    /// 6.1 after); knots 5 mm apart did the same on a smaller scale (synthetic rim 8 of
-    /// vessel 0, a perfect solid of revolution: 0.032 mm RMS at its axis, 0.021 mm 2.9
-    /// degrees away, where the criterion went). On the refinement corpus
-    /// (`examples/refine_accuracy.rs`, 332 fragments from 3 degrees off) knots 5, 3, 2,
-    /// 1.5 and 1 mm apart gave 64.5, 75.0, 81.0, 81.3 and 78.3% of the fragments within
-    /// 4 mm; on perfect solids 1.5 mm gave a median error of 0.017 degrees (5 mm: 2.1).
+    /// vessel's irregularity, not the profile model's stiffness. A stiffer profile (a
+    /// polynomial, knots farther apart) leaves lips and carinations misfitted, and the
+    /// tilt that best spreads that misfit lies degrees off (figures in
+    /// `docs/calibration.md`).
     fn default() -> Self {
         ProfileMethod::Spline { knot_spacing_mm: 1.5 }
     }
