@@ -3,12 +3,12 @@
 //! BENCHMARKS.md, "PLY reading", has the figures): ply-rs-bw hands every value
 //! to a callback by property name (or builds a hash map of them per element), this reader
 //! decodes fixed-size records from one slice straight into the mesh's arrays. It also
-//! gives what ply-rs-bw does not: a size check of the header's counts before allocating,
-//! and errors naming the byte or line, the element index and the value.
+//! gives what ply-rs-bw does not: it checks, before allocating, that the file can hold
+//! what the header declares, and names in every error the file, the header line or body
+//! line (ascii) or byte offset (binary), the element and its index, and the value.
 //!
-//! It checks, before allocating, that the file can hold what the header declares, and
-//! names in every error the file, the header line or body line (ascii) or byte offset
-//! (binary), the element and its index, and the value.
+//! The header is parsed by [`header`], the records are read from a binary or ascii
+//! [`body`], and [`builder`] places each property's value in the mesh.
 
 mod body;
 mod builder;
