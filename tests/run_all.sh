@@ -42,6 +42,8 @@ fi
 
 step "API documentation builds without warnings (broken or private links in doc comments)"
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -q
+# The internals' links too: a moved or renamed private item leaves no broken link behind.
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --document-private-items -q
 
 step "Rust tests"
 # Includes the hostile-file corpus (tests/io_malformed.rs), the replay of the fuzz

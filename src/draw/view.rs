@@ -393,7 +393,7 @@ fn distance2(a: [f64; 2], b: [f64; 2]) -> f64 {
 
 /// The crease edges of `mesh` (dihedral angle above `angle_deg`: rim, fracture edges,
 /// sharp decoration) as vertex pairs. Found once per drawing: both views test the same
-/// edges for visibility with [`visible_creases`].
+/// edges for visibility with [`visible_crease_lines`].
 pub(crate) fn crease_edges(mesh: &Mesh, angle_deg: f64) -> Vec<[u32; 2]> {
     let cos_limit = angle_deg.to_radians().cos();
     let topology = Topology::new(mesh);

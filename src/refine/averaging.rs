@@ -14,13 +14,13 @@ use super::RefineOptions;
 /// them at least has run off (`docs/calibration.md`).
 const MAX_CRITERIA_DISAGREEMENT_DEG: f64 = 5.0;
 
-/// At most this many skin vertices carry the profile criterion that [`Criterion::Auto`]
+/// At most this many skin vertices carry the profile criterion that [`Criterion::Auto`](crate::refine::Criterion::Auto)
 /// averages with Eq. 2 (every k-th skin vertex): the deformation, not the count, limits
 /// what a fragment's profile says about its axis, while the search's time grows with the
 /// count (`docs/calibration.md`).
 const PROFILE_MAX_SKIN_VERTICES: usize = 3000;
 
-/// The profile superposition (Eq. 5 or 6, [`ProfileMethod`]) minimised from the start of
+/// The profile superposition (Eq. 5 or 6, [`ProfileMethod`](crate::refine::superposition::ProfileMethod)) minimised from the start of
 /// `surface` over at most [`PROFILE_MAX_SKIN_VERTICES`] of its skin vertices: the
 /// parameters and the iterations; `None` when it fails or keeps the start.
 pub(super) fn profile_from_start(surface: &PreparedSurface, options: &RefineOptions, settings: &SearchSettings) -> Option<(AxisParameters, u64)> {
