@@ -39,11 +39,9 @@ const SAG_BAND_MM: f64 = 0.3;
 /// noise and the vessel's unevenness. A rounded surface with no edge, such as the convex
 /// underside of a bowl whose standing ring broke off, also has a lowest point in every
 /// vertical section, and a plane tilted onto it touches it in the middle of the arc: the
-/// extremes rise towards both ends, a parabola in the azimuth, whatever the tilt. On the
-/// refinement corpus levelled from 3 degrees off (`examples/refine_accuracy.rs`), the
-/// rims and bases that ended within a degree of the truth sagged 0.011 mm on median and
-/// 0.042 mm at the 95th percentile; the rocking bases 0.17-0.33 mm, and they were 1.5-12
-/// degrees off.
+/// extremes rise towards both ends, a parabola in the azimuth, whatever the tilt. Level
+/// edges sag by hundredths of a millimetre, rocking undersides by tenths
+/// (`docs/calibration.md`, `EDGE_MAX_SAG_MM`).
 pub fn edge_sag_mm(level: &[Point], edge: Edge) -> f64 {
     if level.len() < 4 {
         return 0.0;

@@ -25,12 +25,8 @@ impl TangentObjective {
     /// Crests rather than extremes: a short rim's tilt about its chord rests on the few
     /// hundredths of a millimetre by which its middle stands out of the chord's line (0.5
     /// mm of sagitta over 20 degrees of a 90 mm rim), and one noisy vertex per section
-    /// reads that badly. On the refinement corpus (`examples/refine_accuracy.rs 20 auto`,
-    /// 0.8 mm cells, 0.02 mm noise) the rims levelled by the tangent plane were on average
-    /// 0.287 and 0.402 degrees off on the two sets of ten vessels through their
-    /// extremes, 0.213 and 0.338 through their crests. The noise is what the crests
-    /// average: on the first ten vessels without it 81 of the 83 rims levelled through
-    /// their extremes came within 0.3 degrees, with it 60 (through their crests 70).
+    /// reads that badly; a crest averages the scan's noise away (figures in
+    /// `docs/calibration.md`).
     pub fn plane_tilts(&self, parameters: &AxisParameters, weights: Option<&[f64]>) -> Option<[f64; 2]> {
         let points = self.crest_points(&CandidateFrame::new(parameters));
         let top = match self.edge {
@@ -76,11 +72,8 @@ fn least_squares_plane(points: impl IntoIterator<Item = ([f64; 3], f64)>) -> Opt
 /// Eq. 7 measures every section from the single highest (lowest) extreme and drops those
 /// more than epsilon from it: a tilt that pushes a damaged section out of epsilon lowers
 /// the criterion, and a short rim's plane turns about its chord to do so. The plane through
-/// the level extremes (within 0.5 mm of their median) does not reward that. On the
-/// refinement corpus (`examples/refine_accuracy.rs`) the rims so levelled were within 0.3
-/// degrees of the truth 70% of the time instead of 54%; from the automatic
-/// pre-orientation rim 3 of vessel 2, which Eq. 7 tipped 3.4 degrees (its ends sagging
-/// 0.24 mm), came to 0.3 degrees. It is not used on bases: a base's plane comes from
+/// the level extremes (within 0.5 mm of their median) does not reward that
+/// (`docs/calibration.md`). It is not used on bases: a base's plane comes from
 /// its flat underside where it has one, and a rounded underside's extremes move with the
 /// plane ([`edge_sag_mm`](super::edge_sag_mm)).
 pub fn level_by_plane(surface: &PreparedSurface, edge: Edge, tolerance_mm: f64, section_count: usize, levelled: &Minimum) -> Option<Minimum> {
@@ -119,11 +112,7 @@ pub fn plane_section_count(surface: &PreparedSurface, edge: Edge, at_least: usiz
 }
 
 /// Width of the vertical sections of a rim's plane, in mean edge lengths: as the
-/// horizontal sections are spaced, neighbours share no vertex. On the refinement corpus
-/// (30 vessels, the rims levelled by the tangent plane, the turn held within a degree by
-/// the refinement) the rims within 0.3 degrees went from 185 to 194 of 251 in 0.8 mm cells
-/// and 173 to 177 of 246 in 2 mm cells, against the paper's 12 sections; three edge
-/// lengths gave 187 in 0.8 mm cells.
+/// horizontal sections are spaced, neighbours share no vertex (`docs/calibration.md`).
 const PLANE_SECTION_EDGES: f64 = 2.0;
 /// Most vertical sections of a rim's plane.
 const MAX_PLANE_SECTIONS: usize = 60;
