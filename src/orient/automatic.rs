@@ -9,7 +9,7 @@ use super::options::{check_options, OrientOptions};
 use super::report::{record_sense, CompetitorReach, OrientReport, Orientation};
 use super::sense::SenseInputs;
 use super::verdict::{self, Verdict};
-use super::working_copy::{decimated_copy, select_surface_of_revolution, working_copy};
+use super::working::{decimated_copy, select_surface_of_revolution, working_copy};
 use super::{landscape, revolution_search};
 use crate::axis::{mean_line_distance_mm, Axis};
 use crate::mesh::{Mesh, Point};

@@ -22,7 +22,7 @@ mod sense;
 pub(crate) mod surfaces;
 pub(crate) mod three_points;
 pub mod verdict;
-mod working_copy;
+mod working;
 
 pub use crate::axis::{angle_between_deg, mean_line_distance_mm, mean_point_distance_mm, Axis, AxisRecord};
 pub use automatic::{orient_automatic, orient_automatic_with_decimated};
@@ -32,4 +32,4 @@ pub use report::{CompetitorReach, OrientReport, Orientation};
 pub use sense::SenseInputs;
 pub use surfaces::{segment_surfaces, Skin};
 pub use verdict::{Verdict, VerdictThresholds};
-pub use working_copy::{decimated_copy, surface_of_revolution_lines, working_copy};
+pub use working::{decimated_copy, surface_of_revolution_lines, working_copy};
