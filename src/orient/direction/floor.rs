@@ -6,15 +6,15 @@ use crate::statistics::{weighted_median, weighted_quantile};
 
 /// Share of the surface a flat part must have to decide the sense as a floor.
 pub(super) const MIN_FLOOR_SHARE: f64 = 0.05;
-/// Share of the surface a flat part needs to veto a level edge that says the other way.
-/// A base piece whose wall rises 56 mm from a 3%-wide strip of its underside (`sherd synth
-/// --seed 26 --part base`) was oriented upside down: its level foot read as a level rim.
+/// Share of the surface a flat part needs to veto a level edge that says the other way: a
+/// base whose wall rises from a narrow strip of underside otherwise reads its level foot
+/// as a rim (`docs/calibration.md`).
 pub(super) const MIN_SMALL_FLOOR_SHARE: f64 = 0.02;
 /// A floor reaches inside this fraction of the wall's median radius (a quarter of its
 /// flat area does): a rim's flat top lies at the wall's radius.
 pub(super) const FLOOR_INNER_RADIUS_RATIO: f64 = 0.8;
 /// The same for a small floor, which only vetoes: the strip of underside beside a foot
-/// lies closer to the wall (that base: 0.82 of it on a 20k-face copy).
+/// lies closer to the wall.
 pub(super) const SMALL_FLOOR_INNER_RADIUS_RATIO: f64 = 0.9;
 
 /// The floor cue on the lines of the surface of revolution: `Some(sense)` when a flat

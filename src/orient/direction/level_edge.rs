@@ -11,8 +11,7 @@ use crate::statistics::upper_median;
 const SECTION_WIDTH_MM: f64 = 3.0;
 /// An end of the profile whose position wanders less than this over the sections (once
 /// a tilt of up to [`MAX_EDGE_TILT`] is allowed for) can be a rim: noise and a hand-made
-/// rim's unevenness; rough breaks wander more (measured on the synthetic corpus: rims
-/// 0.01-0.3 mm, breaks that happened to look level 0.3-1 mm), mm.
+/// rim's unevenness; rough breaks wander more (`docs/calibration.md`), mm.
 const LEVEL_SPREAD_MM: f64 = 0.5;
 /// Smallest fraction of the sections whose end lies on the level edge: a rim preserved
 /// along under 40% of the piece's arc is not trusted (a stretch of break can be as level).

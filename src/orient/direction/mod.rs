@@ -75,10 +75,9 @@ pub struct SenseCues {
 }
 
 /// The most the opening cue alone can make of the sense: vessels that narrow upwards
-/// (jar shoulders and necks, the upper half of globular bodies) are common. On the
-/// synthetic corpus the opening decided wrongly on a sixth of the pieces it decided
-/// alone, all from jars, all with `|dr/dz|` under 0.86: with the verdict's limit of 0.55
-/// only walls flaring by more than `|dr/dz|` 0.92 (43 degrees) are trusted.
+/// (jar shoulders and necks, the upper half of globular bodies) are common, so with the
+/// verdict's limit of 0.55 only walls flaring by more than `|dr/dz|` 0.92 (43 degrees)
+/// are trusted (`docs/calibration.md`).
 pub const OPENING_MAX_CONFIDENCE: f64 = 0.6;
 /// Wall slope `|dr/dz|` at which the opening cue reaches its full confidence.
 const OPENING_FULL_SLOPE: f64 = 1.0;
