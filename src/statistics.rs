@@ -142,6 +142,26 @@ pub fn student_t_95(degrees_of_freedom: usize) -> Option<f64> {
     }
 }
 
+/// The principal axes of weighted points: their weighted mean, the eigenvalues of their
+/// weighted covariance in ascending order, and the unit eigenvectors in the same order
+/// (the first is the normal of their total-least-squares plane). `None` when the weights
+/// sum to nothing.
+pub fn principal_axes<'a>(points: impl IntoIterator<Item = (&'a Point, f64)> + Clone) -> Option<(Point, [f64; 3], [Vector; 3])> {
+    let (sum, weight) = points.clone().into_iter().fold((Vector::zeros(), 0.0), |(sum, total), (p, w)| (sum + w * p.coords, total + w));
+    if !(weight > 0.0) {
+        return None;
+    }
+    let mean = sum / weight;
+    let covariance = points.into_iter().fold(nalgebra::Matrix3::<f64>::zeros(), |sum, (p, w)| {
+        let d = p.coords - mean;
+        sum + w * d * d.transpose()
+    }) / weight;
+    let eigen = covariance.symmetric_eigen();
+    let mut order = [0, 1, 2];
+    order.sort_by(|&i, &j| eigen.eigenvalues[i].total_cmp(&eigen.eigenvalues[j]));
+    Some((Point::from(mean), order.map(|i| eigen.eigenvalues[i]), order.map(|i| eigen.eigenvectors.column(i).into_owned())))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -204,24 +224,4 @@ mod tests {
         assert_eq!(weighted_median_abs(&[-4.0, 1.0, 2.0], &[1.0, 1.0, 0.0]), 1.0);
         assert_eq!(weighted_median_abs(&[1.0], &[0.0]), 0.0);
     }
-}
-
-/// The principal axes of weighted points: their weighted mean, the eigenvalues of their
-/// weighted covariance in ascending order, and the unit eigenvectors in the same order
-/// (the first is the normal of their total-least-squares plane). `None` when the weights
-/// sum to nothing.
-pub fn principal_axes<'a>(points: impl IntoIterator<Item = (&'a Point, f64)> + Clone) -> Option<(Point, [f64; 3], [Vector; 3])> {
-    let (sum, weight) = points.clone().into_iter().fold((Vector::zeros(), 0.0), |(sum, total), (p, w)| (sum + w * p.coords, total + w));
-    if !(weight > 0.0) {
-        return None;
-    }
-    let mean = sum / weight;
-    let covariance = points.into_iter().fold(nalgebra::Matrix3::<f64>::zeros(), |sum, (p, w)| {
-        let d = p.coords - mean;
-        sum + w * d * d.transpose()
-    }) / weight;
-    let eigen = covariance.symmetric_eigen();
-    let mut order = [0, 1, 2];
-    order.sort_by(|&i, &j| eigen.eigenvalues[i].total_cmp(&eigen.eigenvalues[j]));
-    Some((Point::from(mean), order.map(|i| eigen.eigenvalues[i]), order.map(|i| eigen.eigenvectors.column(i).into_owned())))
 }

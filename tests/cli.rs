@@ -228,7 +228,7 @@ fn units_from_the_option_or_the_file_keep_the_axis_in_the_file_units_and_report_
     // Read as millimetres, the sherd is ten times smaller: refused as too small, or a
     // tenth of the radius; never the radius of the file read in centimetres.
     let overridden = orient_json(&declared, &["--refine", "none", "--units", "mm"]);
-    let small = overridden["rim_radius_mm"].as_f64().map_or(true, |r| (r / r_mm - 0.1).abs() < 0.01);
+    let small = overridden["rim_radius_mm"].as_f64().is_none_or(|r| (r / r_mm - 0.1).abs() < 0.01);
     assert!(small, "--units mm was not applied: {overridden:#}");
 }
 
@@ -446,7 +446,7 @@ fn export_writes_the_oriented_model_the_reconstruction_and_the_profile() {
 
 fn csv_rows(path: &Path) -> Vec<Vec<String>> {
     let text = fs::read_to_string(path).unwrap();
-    text.lines().skip(1).map(|line| split_csv(line)).collect()
+    text.lines().skip(1).map(split_csv).collect()
 }
 
 fn split_csv(line: &str) -> Vec<String> {

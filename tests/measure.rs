@@ -152,7 +152,7 @@ fn a_wide_axis_interval_flags_the_axis() {
 fn the_intervals_reach_a_competing_axis_the_orientation_could_not_rule_out() {
     let sherd = synthetic_sherd(0, &options(SherdPart::Rim));
     let bootstrap = BootstrapOptions { samples: 6, ..Default::default() };
-    let alone = measure(&sherd.mesh, &sherd.truth.axis, &MeasureOptions { bootstrap: bootstrap.clone(), ..Default::default() });
+    let alone = measure(&sherd.mesh, &sherd.truth.axis, &MeasureOptions { bootstrap, ..Default::default() });
     let reach = sherd::orient::CompetitorReach { angle_deg: 30.0, distance_mm: 60.0 };
     let with_competitor =
         measure(&sherd.mesh, &sherd.truth.axis, &MeasureOptions { bootstrap, axis_competitor_reach: Some(reach), ..Default::default() });

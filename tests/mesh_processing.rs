@@ -310,8 +310,8 @@ fn smoothing_removes_noise_and_respects_boundary_handling() {
     let original = sheet.clone();
     laplacian_smooth(&mut sheet, &SmoothOptions { iterations: 4, weights: LaplacianWeights::Uniform, boundary: BoundaryHandling::Fixed });
     let boundary = Topology::new(&original).boundary_vertex_mask();
-    for v in 0..sheet.vertex_count() {
-        if boundary[v] {
+    for (v, &on_boundary) in boundary.iter().enumerate() {
+        if on_boundary {
             assert_eq!(sheet.positions[v], original.positions[v]);
         }
     }

@@ -45,6 +45,14 @@ RUSTDOCFLAGS="-D warnings" cargo doc --no-deps -q
 # The internals' links too: a moved or renamed private item leaves no broken link behind.
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --document-private-items -q
 
+step "clippy finds nothing in the library, the tool, the tests, examples and benches"
+# Clippy comes with rustup's default profile; a toolchain installed without it is told so.
+if cargo clippy --version >/dev/null 2>&1 || rustup component add clippy >/dev/null 2>&1; then
+  cargo clippy --release --all-targets -q -- -D warnings
+else
+  echo "clippy is not installed and rustup could not add it: lints skipped"
+fi
+
 step "Rust tests"
 # Includes the hostile-file corpus (tests/io_malformed.rs), the replay of the fuzz
 # targets' corpora and found inputs (tests/fuzz_regressions.rs; the long fuzz runs are in

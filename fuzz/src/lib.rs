@@ -13,8 +13,11 @@ use sherd::mesh::{Mesh, Point};
 use sherd::orient::{Axis, OrientOptions, orient_automatic};
 use sherd::refine::{RefineOptions, refine};
 
+/// A fuzz target's harness: it runs one input.
+type Harness = fn(&[u8]);
+
 /// The harness of each fuzz target, by target name.
-pub const TARGETS: [(&str, fn(&[u8])); 6] = [
+pub const TARGETS: [(&str, Harness); 6] = [
     ("ply_ascii", ply_ascii),
     ("ply_binary", ply_binary),
     ("obj_mtl", obj_mtl),

@@ -149,8 +149,8 @@ pub fn rasterize_parallel(width: usize, height: usize, projected: &[[f32; 3]], t
     let bounds = PixelBounds::new(width, 0, height);
     for (f, &t) in triangles.iter().enumerate() {
         let Some([_, _, y0, y1]) = bounds.covered(&spans, t) else { continue };
-        for band in y0 / rows_per_band..=y1 / rows_per_band {
-            bins[band].push(f as u32);
+        for bin in &mut bins[y0 / rows_per_band..=y1 / rows_per_band] {
+            bin.push(f as u32);
         }
     }
     buffer
@@ -184,9 +184,8 @@ fn pixel_spans(projected: &[[f32; 3]], parallel: bool) -> Vec<PixelSpan> {
     let mut spans = vec![PixelSpan { first: [0; 2], last: [0; 2] }; projected.len()];
     let fill = |spans: &mut [PixelSpan], projected: &[[f32; 3]]| {
         for (span, p) in spans.iter_mut().zip(projected) {
-            for k in 0..2 {
-                (span.first[k], span.last[k]) = ceil_and_floor(p[k] - 0.5);
-            }
+            let ((first_x, last_x), (first_y, last_y)) = (ceil_and_floor(p[0] - 0.5), ceil_and_floor(p[1] - 0.5));
+            (span.first, span.last) = ([first_x, first_y], [last_x, last_y]);
         }
     };
     const CHUNK: usize = 1 << 14;
@@ -214,6 +213,9 @@ fn ceil_and_floor(u: f32) -> (i32, i32) {
 }
 
 /// Rasterizes into the rows `row0 .. row0 + rows` held by `depth` and `face`.
+// The one inner loop of the serial and the banded rasterizer: a struct for its arguments
+// would only rename them.
+#[allow(clippy::too_many_arguments)]
 fn rasterize_rows(
     depth: &mut [f32],
     face: &mut [u32],

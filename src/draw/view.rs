@@ -495,7 +495,7 @@ mod tests {
     #[test]
     fn box_mean_of_a_step_is_a_ramp_as_wide_as_the_window() {
         let values: Vec<f32> = (0..20).map(|i| if i < 10 { 0.0 } else { 1.0 }).collect();
-        let mut out = vec![0f32; 20];
+        let mut out = [0f32; 20];
         box_mean(&values, 2, |i, v| out[i] = v);
         assert_eq!(&out[..8], &[0.0; 8]);
         assert_eq!(&out[12..18], &[1.0; 6]);

@@ -151,7 +151,7 @@ pub(crate) fn require<T>(pointer: *const T, name: &str) -> FfiResult {
 ///
 /// # Safety
 /// A non-NULL `path` must point to a NUL-terminated string.
-pub(crate) unsafe fn path_from<'a>(path: *const std::ffi::c_char, name: &str) -> FfiResult<std::path::PathBuf> {
+pub(crate) unsafe fn path_from(path: *const std::ffi::c_char, name: &str) -> FfiResult<std::path::PathBuf> {
     check_pointer(path, name)?;
     let bytes = unsafe { std::ffi::CStr::from_ptr(path) }.to_bytes();
     if bytes.is_empty() {

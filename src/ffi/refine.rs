@@ -337,7 +337,7 @@ pub unsafe extern "C" fn sherd_refine_options_set_search_bound_deg(options: *mut
 pub unsafe extern "C" fn sherd_refine_options_set_pareto_choice(options: *mut SherdRefineOptions, choice: u32, count: usize) -> SherdStatus {
     set("sherd_refine_options_set_pareto_choice", options, |builder| {
         let pareto = &mut builder.options_mut().pareto;
-        *pareto = ParetoOptions { choice: SherdParetoChoice::parse(choice, "choice")?.with_count(count), ..pareto.clone() }.validated()?;
+        *pareto = ParetoOptions { choice: SherdParetoChoice::parse(choice, "choice")?.with_count(count), ..*pareto }.validated()?;
         Ok(())
     })
 }
@@ -356,7 +356,7 @@ pub unsafe extern "C" fn sherd_refine_options_set_pareto_section_limits(
 ) -> SherdStatus {
     set("sherd_refine_options_set_pareto_section_limits", options, |builder| {
         let pareto = &mut builder.options_mut().pareto;
-        *pareto = ParetoOptions { min_section_points: min_points, min_sector_angle_deg: min_sector_deg, ..pareto.clone() }
+        *pareto = ParetoOptions { min_section_points: min_points, min_sector_angle_deg: min_sector_deg, ..*pareto }
             .validated()?;
         Ok(())
     })

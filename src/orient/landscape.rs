@@ -42,7 +42,7 @@ pub fn sample_blocks(samples: &RevolutionSamples) -> Vec<Option<usize>> {
     let ((u_low, u_high), (v_low, v_high)) = (range(|c| c.0), range(|c| c.1));
     let cell = |x: f64, low: f64, high: f64| (((x - low) / (high - low).max(1e-9) * BLOCKS_PER_SIDE as f64) as usize).min(BLOCKS_PER_SIDE - 1);
     let indices: Vec<usize> = coordinates.iter().map(|&(a, b)| cell(a, u_low, u_high) * BLOCKS_PER_SIDE + cell(b, v_low, v_high)).collect();
-    let mut counts = vec![0usize; BLOCKS_PER_SIDE * BLOCKS_PER_SIDE];
+    let mut counts = [0usize; BLOCKS_PER_SIDE * BLOCKS_PER_SIDE];
     for &i in &indices {
         counts[i] += 1;
     }

@@ -22,7 +22,7 @@ pub enum Skin {
 }
 
 /// How the pertinent surface is chosen.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, Default)]
 pub struct SegmentOptions {
     /// Keep the vertices whose normal line passes within this distance of the axis; `None`
     /// derives it from the data: 3 times the median distance (a robust 2-sigma bound when
@@ -31,12 +31,6 @@ pub struct SegmentOptions {
     /// Alternatively keep this fraction of the vertices with the lowest distances (the
     /// paper's manual procedure keeps 50%); used instead of the distance when set.
     pub keep_fraction: Option<f64>,
-}
-
-impl Default for SegmentOptions {
-    fn default() -> Self {
-        SegmentOptions { max_line_distance_mm: None, keep_fraction: None }
-    }
 }
 
 /// Distance between the normal line `(point, normal)` and `axis` (equation (1) of the

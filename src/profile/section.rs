@@ -196,7 +196,7 @@ pub fn most_informative_angle(mesh: &Mesh, axis: &Axis) -> f64 {
     let good: Vec<bool> = heights.iter().map(|&h| h >= 0.99 * best).collect();
     let (mut best_run, mut run_start) = ((0usize, 0usize), None);
     for i in 0..=SAMPLES {
-        match (i < SAMPLES && good[i], run_start) {
+        match (i < SAMPLES && good.get(i) == Some(&true), run_start) {
             (true, None) => run_start = Some(i),
             (false, Some(s)) => {
                 if i - s > best_run.1 - best_run.0 {
@@ -339,7 +339,7 @@ fn chain_segments(segments: &[Segment]) -> Vec<ProfileCurve> {
     let walk = |s: usize, exit: usize, used: &mut Vec<bool>, out: &mut Vec<[f64; 2]>| -> Option<(u32, u32)> {
         let (mut current, mut exit) = (s, exit);
         loop {
-            let Some(key) = segments[current].ends[exit].0 else { return None };
+            let key = segments[current].ends[exit].0?;
             let next = by_edge[&key].iter().copied().find(|&n| !used[n]);
             let Some(next) = next else { return Some(key) };
             used[next] = true;
@@ -533,7 +533,7 @@ mod tests {
         let mesh = revolved_wall(&profile, 0.0, 2.0 * PI, 64, 0.0);
         let section = profile_section(&mesh, &Axis::z(), 0.2);
         let (r0, r1, _, _) = section.bounds().unwrap();
-        assert!(r0 >= 0.0 && r0 < 1e-9 && (r1 - 40.0).abs() < 0.2);
+        assert!((0.0..1e-9).contains(&r0) && (r1 - 40.0).abs() < 0.2);
     }
 
     #[test]

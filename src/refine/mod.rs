@@ -240,7 +240,7 @@ pub(crate) fn validate(mesh: &Mesh, axis: &Axis, options: &RefineOptions) -> Res
         return Err(Error::InvalidArgument("section_count must be at least 1".into()));
     }
     options.profile_method.validated()?;
-    options.pareto.clone().validated()?;
+    options.pareto.validated()?;
     if let Some(count) = options.section_count.filter(|&c| c > MAX_SECTION_COUNT) {
         return Err(Error::InvalidArgument(format!("section_count must be at most {MAX_SECTION_COUNT}, got {count}")));
     }

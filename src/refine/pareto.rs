@@ -234,8 +234,8 @@ pub fn choose(front: &[ParetoPoint], samples: &[ParetoPoint], choice: ParetoChoi
             let chosen = &order[..n.clamp(1, front.len())];
             let mut mean = [0.0; 4];
             for &i in chosen {
-                for k in 0..4 {
-                    mean[k] += front[i].parameters[k] / chosen.len() as f64;
+                for (sum, value) in mean.iter_mut().zip(&front[i].parameters) {
+                    *sum += value / chosen.len() as f64;
                 }
             }
             mean

@@ -228,7 +228,7 @@ impl AnalysisArgs {
                     circle_fit: self.circle_fit,
                     min_section_points: self.pareto_section_limits.0,
                     min_sector_angle_deg: self.pareto_section_limits.1,
-                    ..defaults.pareto.clone()
+                    ..defaults.pareto
                 },
                 profile_method: self.profile_method,
                 tangent_tolerance_mm: self.tangent_tolerance,

@@ -253,9 +253,9 @@ pub fn descend(samples: &RevolutionSamples, start: &Vector, step_rad: f64, toler
             } else {
                 // Shrink towards the best.
                 let best = simplex[0].0;
-                for k in 1..3 {
-                    let t = [(simplex[k].0[0] + best[0]) / 2.0, (simplex[k].0[1] + best[1]) / 2.0];
-                    simplex[k] = (t, fit(t));
+                for vertex in simplex.iter_mut().skip(1) {
+                    let t = [(vertex.0[0] + best[0]) / 2.0, (vertex.0[1] + best[1]) / 2.0];
+                    *vertex = (t, fit(t));
                 }
             }
         }
