@@ -20,6 +20,7 @@ pub mod circles;
 pub(crate) mod edges;
 pub(crate) mod flat_face;
 mod levelling;
+mod linearized_bootstrap;
 pub mod normal_line_placement;
 pub mod objective;
 pub mod pareto;

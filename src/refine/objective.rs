@@ -29,7 +29,8 @@ pub enum FreeParameters {
 }
 
 impl FreeParameters {
-    fn indices(self) -> &'static [usize] {
+    /// The indices of the free parameters in [`AxisParameters`] order.
+    pub(crate) fn indices(self) -> &'static [usize] {
         match self {
             FreeParameters::All => &[0, 1, 2, 3],
             FreeParameters::ShiftsOnly => &[2, 3],

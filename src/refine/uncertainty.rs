@@ -1,7 +1,9 @@
 //! Uncertainty of a refined axis by bootstrap over sections: the criterion is run again
 //! on resampled sections (horizontal sections for the circles criterion, vertical
 //! sections as well for the tangent plane), each resample drawing as many sections as
-//! there are, with replacement. The spread of the resampled axes about the estimate gives
+//! there are, with replacement. The circles criterion's resamples take one Gauss-Newton
+//! step of Eq. 2 linearised at the estimate ([`super::linearized_bootstrap`]), and are
+//! searched by Nelder-Mead only where that step leaves its trust region. The spread of the resampled axes about the estimate gives
 //! a 95% interval for the axis angle and, through the measurements recomputed on each
 //! resampled axis, for the rim and base diameters.
 //!
@@ -24,6 +26,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::circles::CirclesObjective;
+use super::linearized_bootstrap::LinearizedCircles;
 use super::objective::{minimize, FreeParameters, Objective, SearchSettings};
 use super::sections::{AxisParameters, PreparedSurface};
 use crate::statistics::quantile;
@@ -223,6 +226,9 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
     // extremes' (which the wall's first rise beside a small floor leads off), holds them.
     let face = levelled.and_then(|levelled| levelled.face).filter(|_| tangent.is_some());
     let face_tilts = face.as_ref().and_then(|face| face.resampled_tilts(&vec![1.0; face.vertices.len()]));
+    // The circles criterion's resamples share the estimate's sections: linearised once,
+    // each is one Gauss-Newton step, searched only where that step is not trusted.
+    let linearized = tangent.is_none().then(|| LinearizedCircles::new(&CirclesObjective::new(&surface), settings.free.indices()));
     let axes = (0..bootstrap.samples)
         .into_par_iter()
         .filter_map(|sample| {
@@ -252,6 +258,9 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
                 }
                 None => options.free,
             };
+            if let Some(stepped) = linearized.as_ref().and_then(|linearized| linearized.step(&weights)) {
+                return Some(surface.axis_of(&stepped));
+            }
             let placed = minimize(&circles, start, &SearchSettings { free, ..settings }).ok()?;
             Some(surface.axis_of(&placed.parameters))
         })
