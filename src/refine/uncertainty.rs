@@ -2,10 +2,11 @@
 //! on resampled sections (horizontal sections for the circles criterion, vertical
 //! sections as well for the tangent plane), each resample drawing as many sections as
 //! there are, with replacement. The circles criterion's resamples take one Gauss-Newton
-//! step of Eq. 2 linearised at the estimate ([`super::linearized_bootstrap`]), and are
-//! searched by Nelder-Mead only where that step leaves its trust region. The spread of the resampled axes about the estimate gives
-//! a 95% interval for the axis angle and, through the measurements recomputed on each
-//! resampled axis, for the rim and base diameters.
+//! step of Eq. 2 linearised at the estimate (`refine/linearized_bootstrap.rs`), and are
+//! searched by Nelder-Mead only where that step leaves its trust region. The spread of
+//! the resampled axes about the estimate gives a 95% interval for the axis angle and,
+//! through the measurements recomputed on each resampled axis, for the rim and base
+//! diameters.
 //!
 //! For the tangent plane a resample turns the estimate by the change of the
 //! least-squares plane through the level rim (base) extremes of its sections, instead
