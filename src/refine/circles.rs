@@ -69,40 +69,21 @@ pub(crate) fn section_radii(section: &HorizontalSection) -> (Vec<f64>, f64, f64)
     (radii, median, limit)
 }
 
-impl CirclesObjective<'_> {
-    /// Each horizontal section's term of Eq. 2 under `parameters` ([`trimmed_variance`]),
-    /// in section order; `None` for a section with too few points to count, or one whose
-    /// weight is 0. Eq. 2 is their weighted mean ([`weighted_section_mean`]).
-    pub fn section_variances(&self, parameters: &AxisParameters) -> Vec<Option<f64>> {
-        let frame = CandidateFrame::new(parameters);
-        let sections = self.surface.horizontal_sections(&frame);
-        sections
-            .iter()
-            .enumerate()
-            .map(|(index, section)| {
-                let counts = section.points.len() >= MIN_SECTION_POINTS && self.section_weights.is_none_or(|w| w[index] != 0.0);
-                counts.then(|| trimmed_variance(section))
-            })
-            .collect()
-    }
-}
-
-/// Eq. 2 from its per-section terms: their mean weighted by `section_weights` (1 each
-/// when `None`) over the sections that count; infinite when none does.
-pub fn weighted_section_mean(variances: &[Option<f64>], section_weights: Option<&[f64]>) -> f64 {
-    let mut total = 0.0;
-    let mut used = 0.0;
-    for (index, variance) in variances.iter().enumerate() {
-        let section_weight = section_weights.map_or(1.0, |w| w[index]);
-        let Some(variance) = variance.filter(|_| section_weight != 0.0) else { continue };
-        total += section_weight * variance;
-        used += section_weight;
-    }
-    if used == 0.0 { f64::INFINITY } else { total / used }
-}
-
 impl Objective for CirclesObjective<'_> {
     fn value(&self, parameters: &AxisParameters) -> f64 {
-        weighted_section_mean(&self.section_variances(parameters), self.section_weights)
+        let frame = CandidateFrame::new(parameters);
+        let sections = self.surface.horizontal_sections(&frame);
+        let mut total = 0.0;
+        let mut used = 0.0;
+        for (index, section) in sections.iter().enumerate() {
+            let section_weight = self.section_weights.map_or(1.0, |w| w[index]);
+            if section.points.len() < MIN_SECTION_POINTS || section_weight == 0.0 {
+                continue;
+            }
+            let variance = trimmed_variance(section);
+            total += section_weight * variance;
+            used += section_weight;
+        }
+        if used == 0.0 { f64::INFINITY } else { total / used }
     }
 }

@@ -13,8 +13,9 @@
 
 use nalgebra::{Matrix4, Vector4};
 
-use super::circles::{section_radii, CirclesObjective, MIN_SECTION_POINTS};
-use super::sections::{AxisParameters, CandidateFrame};
+use super::circles::{section_radii, MIN_SECTION_POINTS};
+use super::sections::{AxisParameters, CandidateFrame, PreparedSurface};
+use crate::orient::Skin;
 
 /// A step longer than this along a tilt (radians times the farthest section's height)
 /// or a shift is not trusted, mm: past it, points change section and the linearisation
@@ -41,58 +42,54 @@ pub(super) struct LinearizedCircles {
 }
 
 impl LinearizedCircles {
-    /// Cuts the sections of `circles` at the estimate and linearises each term.
-    pub(super) fn new(circles: &CirclesObjective, free: &'static [usize]) -> Self {
-        let sections = circles.surface.horizontal_sections(&CandidateFrame::new(&[0.0; 4]));
+    /// Cuts the sections of `surface` at the estimate and linearises each one's Eq. 2
+    /// term.
+    pub(super) fn new(surface: &PreparedSurface, free: &'static [usize]) -> Self {
+        let sections = surface.horizontal_sections(&CandidateFrame::new(&[0.0; 4]));
         let lever_mm = sections.iter().fold(0.0f64, |m, s| m.max(s.height_mm.abs()));
         let trimmed: Vec<Option<(Vec<f64>, f64, f64)>> =
             sections.iter().map(|section| (section.points.len() >= MIN_SECTION_POINTS).then(|| section_radii(section))).collect();
         // The profile's slope dr/dz at each section, from the median radii of the same
-        // skin's sections below and above.
-        let slopes: Vec<f64> = (0..sections.len())
-            .map(|i| {
-                let Some((_, median, _)) = &trimmed[i] else { return 0.0 };
-                let same_skin = |j: &usize| sections[*j].skin == sections[i].skin && trimmed[*j].is_some();
-                let nearest = |candidates: &mut dyn Iterator<Item = usize>| {
-                    candidates.filter(same_skin).min_by(|&a, &b| (sections[a].height_mm - sections[i].height_mm).abs().total_cmp(&(sections[b].height_mm - sections[i].height_mm).abs()))
-                };
-                let below = nearest(&mut (0..sections.len()).filter(|&j| sections[j].height_mm < sections[i].height_mm));
-                let above = nearest(&mut (0..sections.len()).filter(|&j| sections[j].height_mm > sections[i].height_mm));
-                let at = |j: usize| (sections[j].height_mm, trimmed[j].as_ref().expect("counted").1);
-                match (below.map(at), above.map(at)) {
-                    (Some((z0, r0)), Some((z1, r1))) => (r1 - r0) / (z1 - z0),
-                    (Some((z0, r0)), None) => (median - r0) / (sections[i].height_mm - z0),
-                    (None, Some((z1, r1))) => (r1 - median) / (z1 - sections[i].height_mm),
-                    (None, None) => 0.0,
+        // skin's sections just below and above (one-sided at the ends).
+        let mut slopes = vec![0.0; sections.len()];
+        for skin in [Some(Skin::Inner), Some(Skin::Outer), Some(Skin::Other), None] {
+            let mut profile: Vec<(f64, f64, usize)> = (0..sections.len())
+                .filter(|&i| sections[i].skin == skin)
+                .filter_map(|i| trimmed[i].as_ref().map(|(_, median, _)| (sections[i].height_mm, *median, i)))
+                .collect();
+            profile.sort_by(|a, b| a.0.total_cmp(&b.0));
+            for k in 0..profile.len() {
+                let (below, above) = (profile[k.saturating_sub(1)], profile[(k + 1).min(profile.len() - 1)]);
+                if above.0 > below.0 {
+                    slopes[profile[k].2] = (above.1 - below.1) / (above.0 - below.0);
                 }
-            })
-            .collect();
+            }
+        }
         let models = sections
             .iter()
             .zip(&trimmed)
             .zip(&slopes)
             .map(|((section, trimmed), &slope)| {
                 let (radii, median, limit) = trimmed.as_ref()?;
-                let (median, limit) = (*median, *limit);
                 // Under small tilts (t0 about x, t1 about y) and shifts (s0, s1), the plane
                 // at height z cuts the wall at material points that were t0 y - t1 x higher,
                 // where the wall's radius differs by the slope times that, and which move
                 // to (x - s0 - t1 z, y - s1 + t0 z): a point's distance to the axis changes
                 // by J . (t0, t1, s0, s1).
                 let z = section.height_mm;
-                let kept = || {
-                    section.points.iter().zip(radii).zip(&section.weights).filter(move |((_, r), _)| (**r - median).abs() <= limit)
-                };
-                let jacobian =
-                    |p: &[f64; 2], r: f64| Vector4::new(p[1] * z / r + slope * p[1], -p[0] * z / r - slope * p[0], -p[0] / r, -p[1] / r);
+                let kept: Vec<(f64, f64, Vector4<f64>)> = section
+                    .points
+                    .iter()
+                    .zip(radii)
+                    .zip(&section.weights)
+                    .filter(|((_, r), _)| (**r - median).abs() <= *limit && **r > 0.0)
+                    .map(|((p, &r), &w)| (w, r, Vector4::new(p[1] * z / r + slope * p[1], -p[0] * z / r - slope * p[0], -p[0] / r, -p[1] / r)))
+                    .collect();
                 let (mut weight, mut mean_radius, mut mean_jacobian) = (0.0, 0.0, Vector4::zeros());
-                for ((p, &r), &w) in kept() {
-                    if r <= 0.0 {
-                        continue;
-                    }
+                for &(w, r, jacobian) in &kept {
                     weight += w;
                     mean_radius += w * r;
-                    mean_jacobian += w * jacobian(p, r);
+                    mean_jacobian += w * jacobian;
                 }
                 if weight <= 0.0 {
                     return None;
@@ -100,11 +97,8 @@ impl LinearizedCircles {
                 mean_radius /= weight;
                 mean_jacobian /= weight;
                 let (mut gradient, mut hessian) = (Vector4::zeros(), Matrix4::zeros());
-                for ((p, &r), &w) in kept() {
-                    if r <= 0.0 {
-                        continue;
-                    }
-                    let centred = jacobian(p, r) - mean_jacobian;
+                for &(w, r, jacobian) in &kept {
+                    let centred = jacobian - mean_jacobian;
                     gradient += (2.0 * w * (r - mean_radius) / weight) * centred;
                     hessian += (2.0 * w / weight) * centred * centred.transpose();
                 }
@@ -148,8 +142,8 @@ impl LinearizedCircles {
 mod tests {
     use super::*;
     use crate::axis::{perpendicular_frame, Axis};
+    use crate::refine::circles::CirclesObjective;
     use crate::refine::objective::{minimize, FreeParameters, Objective, SearchSettings};
-    use crate::refine::sections::PreparedSurface;
     use crate::refine::Surface;
     use crate::synth::{synthetic_sherd, SherdOptions, SherdPart};
 
@@ -178,7 +172,7 @@ mod tests {
             }
             let settings = SearchSettings { free: FreeParameters::All, max_iterations: 400, max_restarts: 2, relative_cost_tolerance: 1e-12, ..Default::default() };
             let searched = minimize(&circles, [0.0; 4], &settings).unwrap().parameters;
-            let linearized = LinearizedCircles::new(&circles, FreeParameters::All.indices());
+            let linearized = LinearizedCircles::new(&surface, FreeParameters::All.indices());
             let section_count = linearized.models.len();
             let Some(stepped) = linearized.step(&vec![1.0; section_count]) else {
                 refused += 1;

@@ -229,7 +229,7 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
     let face_tilts = face.as_ref().and_then(|face| face.resampled_tilts(&vec![1.0; face.vertices.len()]));
     // The circles criterion's resamples share the estimate's sections: linearised once,
     // each is one Gauss-Newton step, searched only where that step is not trusted.
-    let linearized = tangent.is_none().then(|| LinearizedCircles::new(&CirclesObjective::new(&surface), settings.free.indices()));
+    let linearized = tangent.is_none().then(|| LinearizedCircles::new(&surface, settings.free.indices()));
     let axes = (0..bootstrap.samples)
         .into_par_iter()
         .filter_map(|sample| {
