@@ -14,7 +14,7 @@
 use nalgebra::{Matrix4, Vector4};
 
 use super::circles::{section_radii, MIN_SECTION_POINTS};
-use super::sections::{AxisParameters, CandidateFrame, PreparedSurface};
+use super::sections::{AxisParameters, HorizontalSection};
 use crate::orient::Skin;
 
 /// A step longer than this along a tilt (radians times the farthest section's height)
@@ -42,10 +42,9 @@ pub(super) struct LinearizedCircles {
 }
 
 impl LinearizedCircles {
-    /// Cuts the sections of `surface` at the estimate and linearises each one's Eq. 2
-    /// term.
-    pub(super) fn new(surface: &PreparedSurface, free: &'static [usize]) -> Self {
-        let sections = surface.horizontal_sections(&CandidateFrame::new(&[0.0; 4]));
+    /// Linearises the Eq. 2 term of each of `sections`, the horizontal sections at the
+    /// estimate (parameters 0).
+    pub(super) fn new(sections: &[HorizontalSection], free: &'static [usize]) -> Self {
         let lever_mm = sections.iter().fold(0.0f64, |m, s| m.max(s.height_mm.abs()));
         let trimmed: Vec<Option<(Vec<f64>, f64, f64)>> =
             sections.iter().map(|section| (section.points.len() >= MIN_SECTION_POINTS).then(|| section_radii(section))).collect();
@@ -143,6 +142,7 @@ mod tests {
     use super::*;
     use crate::axis::{perpendicular_frame, Axis};
     use crate::refine::circles::CirclesObjective;
+    use crate::refine::sections::{CandidateFrame, PreparedSurface};
     use crate::refine::objective::{minimize, FreeParameters, Objective, SearchSettings};
     use crate::refine::Surface;
     use crate::synth::{synthetic_sherd, SherdOptions, SherdPart};
@@ -172,7 +172,7 @@ mod tests {
             }
             let settings = SearchSettings { free: FreeParameters::All, max_iterations: 400, max_restarts: 2, relative_cost_tolerance: 1e-12, ..Default::default() };
             let searched = minimize(&circles, [0.0; 4], &settings).unwrap().parameters;
-            let linearized = LinearizedCircles::new(&surface, FreeParameters::All.indices());
+            let linearized = LinearizedCircles::new(&surface.horizontal_sections(&CandidateFrame::new(&[0.0; 4])), FreeParameters::All.indices());
             let section_count = linearized.models.len();
             let Some(stepped) = linearized.step(&vec![1.0; section_count]) else {
                 refused += 1;

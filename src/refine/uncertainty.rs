@@ -176,7 +176,8 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
     super::validate(mesh, axis, options)?;
     let surface = PreparedSurface::new(mesh, axis, options.surface, options.section_count)?;
     let Choice { criterion: method, edge, levelled, .. } = choose_criterion(&surface, options);
-    let section_count = surface.horizontal_sections(&super::sections::CandidateFrame::new(&[0.0; 4])).len();
+    let sections_at_estimate = surface.horizontal_sections(&super::sections::CandidateFrame::new(&[0.0; 4]));
+    let section_count = sections_at_estimate.len();
     let settings = SearchSettings {
         free: options.free,
         tilt_bound_rad: options.search_bound_deg.to_radians(),
@@ -229,7 +230,7 @@ pub fn bootstrap_axes(mesh: &Mesh, axis: &Axis, options: &RefineOptions, bootstr
     let face_tilts = face.as_ref().and_then(|face| face.resampled_tilts(&vec![1.0; face.vertices.len()]));
     // The circles criterion's resamples share the estimate's sections: linearised once,
     // each is one Gauss-Newton step, searched only where that step is not trusted.
-    let linearized = tangent.is_none().then(|| LinearizedCircles::new(&surface, settings.free.indices()));
+    let linearized = tangent.is_none().then(|| LinearizedCircles::new(&sections_at_estimate, settings.free.indices()));
     let axes = (0..bootstrap.samples)
         .into_par_iter()
         .filter_map(|sample| {
