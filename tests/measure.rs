@@ -4,7 +4,7 @@ use sherd::mesh::{Mesh, Point};
 use sherd::orient::Axis;
 use sherd::profile::measure::{measure, MeasureOptions, MAX_UNFLAGGED_AXIS_INTERVAL_DEG};
 use sherd::refine::uncertainty::BootstrapOptions;
-use sherd::synth::{synthetic_sherd, SherdOptions, SherdPart, SynthSherd};
+use sherd::synth::{synthetic_sherd, BaseForm, ProfileForms, RimForm, SherdOptions, SherdPart, SynthSherd};
 
 fn options(part: SherdPart) -> SherdOptions {
     SherdOptions { target_faces: 8000, ..SherdOptions::for_part(part).ideal() }
@@ -134,6 +134,40 @@ fn base_sherds_give_a_base_diameter() {
         }
     }
     assert!(measured >= 4, "only {measured} base sherds gave a base radius");
+}
+
+/// A thickened lip is measured at its bead's outer edge, below the top, where a radius
+/// chart reads it; a radius taken at the top would be short by the bead.
+#[test]
+fn thickened_lips_are_measured_at_the_bead() {
+    let forms = ProfileForms { lips: vec![RimForm::Thickened], bases: vec![BaseForm::Flat] };
+    let mut beads = 0;
+    for seed in 0..8 {
+        let sherd = synthetic_sherd(seed, &SherdOptions { forms: forms.clone(), ..options(SherdPart::Rim) });
+        let (Some(truth), RimForm::Thickened) = (sherd.truth.rim_radius_mm, sherd.truth.vessel.rim_form) else { continue };
+        let m = measure(&sherd.mesh, &sherd.truth.axis, &without_intervals());
+        let rim = m.rim_radius_mm.unwrap_or_else(|| panic!("seed {seed}: rim not found: {:?}", m.notes));
+        assert!((rim - truth).abs() < 0.005 * truth, "seed {seed}: rim radius {rim} vs the bead's edge at {truth}");
+        beads += 1;
+    }
+    assert!(beads >= 4, "only {beads} thickened lips made");
+}
+
+/// A ring foot's base radius is the foot's, where the vessel stands.
+#[test]
+fn ring_feet_give_the_foot_as_base_diameter() {
+    let forms = ProfileForms { lips: vec![RimForm::Rounded], bases: vec![BaseForm::RingFoot] };
+    let mut measured = 0;
+    for seed in 0..8 {
+        let sherd = synthetic_sherd(seed, &SherdOptions { forms: forms.clone(), ..options(SherdPart::Base) });
+        assert_eq!(sherd.truth.vessel.base_form, BaseForm::RingFoot, "seed {seed}");
+        let Some(truth) = sherd.truth.base_radius_mm else { continue };
+        if let Some(base) = measure(&sherd.mesh, &sherd.truth.axis, &without_intervals()).base_radius_mm {
+            assert!((base - truth).abs() < 0.03 * truth, "seed {seed}: base radius {base} vs the foot's {truth}");
+            measured += 1;
+        }
+    }
+    assert!(measured >= 3, "only {measured} ring-foot bases measured");
 }
 
 /// An axis interval wider than the threshold flags the axis as uncertain (here forced by

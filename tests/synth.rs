@@ -6,7 +6,8 @@ use std::collections::HashMap;
 use sherd::mesh::{Mesh, Point};
 use sherd::synth::truth::{distance_to_polyline, sector_angle_deg};
 use sherd::synth::{
-    generate_vessel, synthetic_sherd, HardCase, RimForm, SherdOptions, SherdPart, SurfaceKind, SynthSherd, VesselOptions, VesselShape,
+    generate_vessel, synthetic_sherd, BaseForm, HardCase, ProfileForms, RimForm, SherdOptions, SherdPart, SurfaceKind, SynthSherd,
+    VesselOptions, VesselProfile, VesselShape,
 };
 
 /// Every directed edge appears exactly once and its reverse exactly once: closed,
@@ -166,6 +167,41 @@ fn ideal_sherd_lies_exactly_on_its_profile() {
         forms_seen.push(form);
     }
     assert!(forms_seen.contains(&RimForm::Flat) && forms_seen.contains(&RimForm::Rounded), "{forms_seen:?}");
+}
+
+/// A thickened lip's bead stands out below the top, and the truth's rim radius is its
+/// widest point; a ring foot stands on the plane z = 0, lifts the floor's centre by its
+/// height, and gives the base radius where its outer flank leaves the ground.
+#[test]
+fn thickened_lips_and_ring_feet_are_where_the_truth_says() {
+    use rand::SeedableRng;
+    let forms = ProfileForms { lips: vec![RimForm::Thickened], bases: vec![BaseForm::RingFoot] };
+    let (mut beads, mut feet) = (0, 0);
+    for seed in 0..12u64 {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let shape = VesselShape::ORDINARY[seed as usize % VesselShape::ORDINARY.len()];
+        let profile = VesselProfile::random(shape, &forms, &mut rng);
+        let outer = profile.skin_polyline(1.0, 0.1);
+        let top = outer.last().expect("a profile");
+        if profile.rim_form == RimForm::Thickened {
+            let widest = outer.iter().filter(|p| p[1] > top[1] - 2.0 * profile.wall_thickness_mm).map(|p| p[0]).fold(f64::MIN, f64::max);
+            assert!((widest - profile.rim_radius_mm()).abs() < 0.05, "seed {seed}: bead {widest} vs rim radius {}", profile.rim_radius_mm());
+            assert!(profile.rim_radius_mm() > top[0] + 1.0, "seed {seed}: bead {} at the top's {}", profile.rim_radius_mm(), top[0]);
+            beads += 1;
+        }
+        assert_eq!(profile.base_form, BaseForm::RingFoot, "seed {seed}");
+        let lowest = outer.iter().map(|p| p[1]).fold(f64::MAX, f64::min);
+        assert!(lowest.abs() < 1e-9, "seed {seed}: the foot stands at {lowest}, not on z = 0");
+        let centre_height = outer[0][1];
+        assert!((3.0..=7.0).contains(&centre_height), "seed {seed}: the floor's centre at {centre_height} mm");
+        let base = profile.base_radius_mm();
+        // The outer flank crosses the base radius 1 mm up (the first table step past it).
+        let w = outer.windows(2).find(|w| w[0][0] < base && w[1][0] >= base && w[1][1] < 2.0).expect("the foot's outer flank");
+        let height = w[0][1] + (base - w[0][0]) / (w[1][0] - w[0][0]) * (w[1][1] - w[0][1]);
+        assert!((0.99..=1.02).contains(&height), "seed {seed}: the base radius {base} lies {height} mm up");
+        feet += 1;
+    }
+    assert!(beads >= 6 && feet == 12, "{beads} beads, {feet} feet");
 }
 
 #[test]

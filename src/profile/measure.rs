@@ -162,10 +162,11 @@ const EDGE_BAND_MM: f64 = 1.0;
 /// larger of the highest outer-skin vertex's radius (the edge of a lip that slopes
 /// outwards and down, whose inner edge is the higher) and the largest radius within
 /// [`EDGE_BAND_MM`] below the section's top (the edge of a flat lip, across which the
-/// highest vertex lies anywhere). Base: per
+/// highest vertex lies anywhere), or where the lip's outer edge lies lower, under a bead
+/// or an everted lip, that edge ([`bead_radius`]). Base: per
 /// vertical section, the radius of the outer-skin vertex nearest to [`EDGE_BAND_MM`]
 /// above the standing plane (where the outer skin leaves it). The median over sections.
-fn edge_radius(oriented: &[Point], outer_skin: &[bool], edge: Edge) -> Option<f64> {
+fn edge_radius(oriented: &[Point], outer_skin: &[bool], edge: Edge, wall_mm: f64) -> Option<f64> {
     let sections = vertical_sections(oriented, EDGE_SECTIONS);
     let standing = oriented.iter().map(|p| p.z).fold(f64::INFINITY, f64::min);
     // A base sherd holding the floor's centre keeps the wall on some sides only: the
@@ -182,7 +183,13 @@ fn edge_radius(oriented: &[Point], outer_skin: &[bool], edge: Edge) -> Option<f6
                     let highest_outer = indices.iter().filter(|&&i| outer_skin[i]).map(|&i| oriented[i]).max_by(|a, b| a.z.total_cmp(&b.z));
                     let top = indices.iter().map(|&i| oriented[i].z).fold(f64::NEG_INFINITY, f64::max);
                     let widest_at_top = indices.iter().map(|&i| oriented[i]).filter(|p| p.z >= top - EDGE_BAND_MM).map(|p| radius(&p)).max_by(f64::total_cmp);
-                    highest_outer.map(|p| radius(&p)).into_iter().chain(widest_at_top).max_by(f64::total_cmp)
+                    let at_top = highest_outer.map(|p| radius(&p)).into_iter().chain(widest_at_top).max_by(f64::total_cmp)?;
+                    // A bead counts where it stands out beyond the top's edge; a wall
+                    // bulging a little below its lip (an incurving rim) is read at the lip.
+                    Some(match (bead_radius(oriented, outer_skin, indices, top, wall_mm), widest_at_top) {
+                        (Some(bead), Some(widest)) if bead > widest + MIN_BEAD_MM => bead.max(at_top),
+                        _ => at_top,
+                    })
                 }
                 // The outer skin where it has risen by the band above the standing plane.
                 Edge::Base => indices
@@ -206,6 +213,44 @@ fn edge_radius(oriented: &[Point], outer_skin: &[bool], edge: Edge) -> Option<f6
         .collect();
     (!radii.is_empty()).then(|| quantile(&mut radii, 0.5))
 }
+
+/// The wall thickness assumed where the profile section gives none, mm.
+const DEFAULT_WALL_MM: f64 = 6.0;
+/// How far below the top a lip's outer edge is looked for, in wall thicknesses: a bead
+/// (thickened lip) or an everted lip's hanging edge lies within about one.
+const LIP_DEPTH_WALLS: f64 = 1.5;
+/// How much the skin must narrow under a lip's outer edge below its top, and how far that
+/// edge must stand out beyond the top's, mm: more than a rough surface's bumps, less
+/// than a bead a potter forms.
+const MIN_BEAD_MM: f64 = 1.0;
+
+/// The radius of a lip's outer edge that lies below its top (a bead, an everted lip's
+/// hanging edge) in one vertical section (`indices` of `oriented`, whose highest point is
+/// at `top`): the widest point within [`LIP_DEPTH_WALLS`] wall thicknesses of the top,
+/// where the outer skin under it, within as much again, narrows by [`MIN_BEAD_MM`]. A wall
+/// that keeps widening downwards (a jar's neck into its shoulder) has no such edge.
+fn bead_radius(oriented: &[Point], outer_skin: &[bool], indices: &[usize], top: f64, wall_mm: f64) -> Option<f64> {
+    let radius = |p: &Point| planar_length(p.x, p.y);
+    let depth = LIP_DEPTH_WALLS * wall_mm;
+    let widest = indices.iter().map(|&i| oriented[i]).filter(|p| p.z >= top - depth).max_by(|a, b| radius(a).total_cmp(&radius(b)))?;
+    let edge_radius = radius(&widest);
+    // The skin's radius at each height under the edge is the widest outer-skin vertex of
+    // a slab of that height: the narrowest of these says whether the skin comes back in.
+    let outer: Vec<Point> = indices.iter().filter(|&&i| outer_skin[i]).map(|&i| oriented[i]).collect();
+    let slabs = (depth / UNDER_LIP_SLAB_MM).ceil() as usize;
+    let narrowest_under = (1..=slabs)
+        .filter_map(|k| {
+            let centre = widest.z - k as f64 * UNDER_LIP_SLAB_MM;
+            let in_slab = outer.iter().filter(|p| (p.z - centre).abs() <= 0.5 * UNDER_LIP_SLAB_MM);
+            let (count, widest_in_slab) = in_slab.fold((0, f64::NEG_INFINITY), |(n, r), p| (n + 1, r.max(radius(p))));
+            (count >= 2).then_some(widest_in_slab)
+        })
+        .min_by(f64::total_cmp)?;
+    (narrowest_under < edge_radius - MIN_BEAD_MM).then_some(edge_radius)
+}
+
+/// Height of the slabs in which [`bead_radius`] follows the skin under a lip, mm.
+const UNDER_LIP_SLAB_MM: f64 = 1.0;
 
 /// Height below the rim's level (above the base's) within which a vertex counts as part
 /// of that edge when its preserved arc is measured, mm: wider than the lip's rounding
@@ -399,13 +444,6 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
     } else if !has_base {
         measurements.notes.push("a piece of the floor that does not reach the base edge: no base diameter".into());
     }
-    measurements.rim_radius_mm = has_rim.then(|| edge_radius(&oriented, &outer_skin, Edge::Rim)).flatten();
-    measurements.base_radius_mm = has_base.then(|| edge_radius(&oriented, &outer_skin, Edge::Base)).flatten();
-    measurements.rim_diameter_mm = measurements.rim_radius_mm.map(|r| 2.0 * r);
-    measurements.rim_sector_deg = measurements.rim_radius_mm.and_then(|r| edge_sector_deg(&oriented, Edge::Rim, r));
-    measurements.base_sector_deg = measurements.base_radius_mm.and_then(|r| edge_sector_deg(&oriented, Edge::Base, r));
-    measurements.base_diameter_mm = measurements.base_radius_mm.map(|r| 2.0 * r);
-
     let section = profile_section(mesh, axis, most_informative_angle(mesh, axis));
     let outlines = section.closed_outlines();
     if let Some((_, _, z_low, z_high)) = section.bounds() {
@@ -420,6 +458,14 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
     } else {
         measurements.notes.push("the profile section is empty".into());
     }
+    let wall_mm = measurements.wall_thickness_mm.unwrap_or(DEFAULT_WALL_MM);
+    measurements.rim_radius_mm = has_rim.then(|| edge_radius(&oriented, &outer_skin, Edge::Rim, wall_mm)).flatten();
+    measurements.base_radius_mm = has_base.then(|| edge_radius(&oriented, &outer_skin, Edge::Base, wall_mm)).flatten();
+    measurements.rim_diameter_mm = measurements.rim_radius_mm.map(|r| 2.0 * r);
+    measurements.rim_sector_deg = measurements.rim_radius_mm.and_then(|r| edge_sector_deg(&oriented, Edge::Rim, r));
+    measurements.base_sector_deg = measurements.base_radius_mm.and_then(|r| edge_sector_deg(&oriented, Edge::Base, r));
+    measurements.base_diameter_mm = measurements.base_radius_mm.map(|r| 2.0 * r);
+
 
     match bootstrap_axes(bootstrap_mesh, axis, &options.refine, &options.bootstrap) {
         Ok(replicates) if !replicates.is_empty() => {
@@ -486,7 +532,7 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
                 axes.iter()
                     .map(|other| {
                         let points = oriented_with(other);
-                        let radius = |wanted: bool, edge: Edge| if wanted { edge_radius(&points, &outer_skin, edge) } else { None };
+                        let radius = |wanted: bool, edge: Edge| if wanted { edge_radius(&points, &outer_skin, edge, wall_mm) } else { None };
                         [radius(has_rim, Edge::Rim), radius(has_base, Edge::Base)]
                     })
                     .collect()

@@ -34,6 +34,7 @@ pub(super) fn vessel_truth(profile: &VesselProfile, deformation: &Deformation) -
         height_mm: profile.height_mm(),
         wall_thickness_mm: profile.wall_thickness_mm,
         rim_form: profile.rim_form,
+        base_form: profile.base_form,
         deformation: deformation.clone(),
     }
 }

@@ -26,7 +26,7 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
 pub use deform::Deformation;
-pub use shape::{RimForm, VesselProfile, VesselShape};
+pub use shape::{BaseForm, ProfileForms, RimForm, VesselProfile, VesselShape};
 pub use truth::{GroundTruth, HardCase, RigidMotion, SherdPart, SurfaceKind, VesselTruth};
 pub use write::{read_truth, write_sherd};
 
@@ -64,6 +64,8 @@ pub struct SherdOptions {
     pub hard_case: Option<HardCase>,
     /// Give the vertices fired-clay colours.
     pub colours: bool,
+    /// The lip and base forms the vessel is drawn from.
+    pub forms: ProfileForms,
 }
 
 impl Default for SherdOptions {
@@ -79,6 +81,7 @@ impl Default for SherdOptions {
             random_motion: true,
             hard_case: None,
             colours: true,
+            forms: ProfileForms::default(),
         }
     }
 }
@@ -133,6 +136,8 @@ pub struct VesselOptions {
     pub random_motion: bool,
     /// Give the vertices fired-clay colours.
     pub colours: bool,
+    /// The lip and base forms the vessel is drawn from.
+    pub forms: ProfileForms,
 }
 
 impl Default for VesselOptions {
@@ -146,6 +151,7 @@ impl Default for VesselOptions {
             roughness_mm: 1.5,
             random_motion: false,
             colours: true,
+            forms: ProfileForms::default(),
         }
     }
 }
@@ -194,7 +200,7 @@ pub fn synthetic_sherd(seed: u64, options: &SherdOptions) -> SynthSherd {
     let fallback = loop {
         let mut fallback = None;
         for attempt in 0..MAX_ATTEMPTS {
-            let profile = VesselProfile::random(shape_of(&mut rng), &mut rng);
+            let profile = VesselProfile::random(shape_of(&mut rng), &options.forms, &mut rng);
             let deformation = Deformation::random(&mut rng, options.deformation_scale, profile.height_mm());
             let Some(plan) = plan_fragment(&profile, wanted_part, options, &mut rng) else {
                 continue;
@@ -233,7 +239,7 @@ pub fn synthetic_sherd(seed: u64, options: &SherdOptions) -> SynthSherd {
 pub fn generate_vessel(seed: u64, options: &VesselOptions) -> SynthVessel {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let shape = options.shape.unwrap_or_else(|| VesselShape::random(&mut rng));
-    let profile = VesselProfile::random(shape, &mut rng);
+    let profile = VesselProfile::random(shape, &options.forms, &mut rng);
     let deformation = Deformation::random(&mut rng, options.deformation_scale, profile.height_mm());
     let length = profile.length_mm();
     let max_radius = profile.max_radius_mm();

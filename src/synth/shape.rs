@@ -87,6 +87,147 @@ pub enum RimForm {
     /// Rounded: the skins close along a quarter-circle-like cap of radius half the wall
     /// thickness (up to 70 degrees, leaving a narrow flat top).
     Rounded,
+    /// Rounded, with a bead outside: the outer skin swells just below the cap, so that the
+    /// lip's outer edge, where a radius chart reads it, lies below its top.
+    Thickened,
+}
+
+impl RimForm {
+    /// Every lip form.
+    pub const ALL: [RimForm; 3] = [RimForm::Flat, RimForm::Rounded, RimForm::Thickened];
+
+    /// The lower-case name used on the command line and in JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            RimForm::Flat => "flat",
+            RimForm::Rounded => "rounded",
+            RimForm::Thickened => "thickened",
+        }
+    }
+}
+
+impl std::str::FromStr for RimForm {
+    type Err = crate::Error;
+
+    fn from_str(text: &str) -> crate::Result<Self> {
+        super::parse_name(text, &RimForm::ALL, RimForm::name, "lip form")
+    }
+}
+
+/// How the base meets the ground.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BaseForm {
+    /// The underside stands on the ground over its whole width.
+    Flat,
+    /// A ring foot: a ridge under the floor, inside the base's edge, on which the vessel
+    /// stands; the floor's centre is raised off the ground by the ridge's height.
+    RingFoot,
+}
+
+impl BaseForm {
+    /// Every base form.
+    pub const ALL: [BaseForm; 2] = [BaseForm::Flat, BaseForm::RingFoot];
+
+    /// The lower-case name used on the command line and in JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            BaseForm::Flat => "flat",
+            BaseForm::RingFoot => "ring_foot",
+        }
+    }
+}
+
+impl std::str::FromStr for BaseForm {
+    type Err = crate::Error;
+
+    fn from_str(text: &str) -> crate::Result<Self> {
+        super::parse_name(text, &BaseForm::ALL, BaseForm::name, "base form")
+    }
+}
+
+/// The lip and base forms a random profile is drawn from.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ProfileForms {
+    /// Lip forms, drawn with equal chances (flat and rounded alone keep their 30/70 share).
+    pub lips: Vec<RimForm>,
+    /// Base forms, drawn with equal chances.
+    pub bases: Vec<BaseForm>,
+}
+
+impl Default for ProfileForms {
+    /// Flat and rounded lips on flat bases.
+    fn default() -> Self {
+        ProfileForms { lips: vec![RimForm::Flat, RimForm::Rounded], bases: vec![BaseForm::Flat] }
+    }
+}
+
+impl ProfileForms {
+    /// Every form the generator can make.
+    pub fn all() -> Self {
+        ProfileForms { lips: RimForm::ALL.to_vec(), bases: BaseForm::ALL.to_vec() }
+    }
+
+    /// A lip form. The draw for the default pair is the one the generator has always
+    /// made, so that the corpora of a seed stay the same files.
+    fn draw_lip(&self, rng: &mut impl Rng) -> RimForm {
+        let mut lips = self.lips.clone();
+        lips.sort_by_key(|form| *form as u8);
+        lips.dedup();
+        match lips.as_slice() {
+            [] => RimForm::Rounded,
+            [only] => *only,
+            [RimForm::Flat, RimForm::Rounded] => {
+                if rng.random_bool(0.7) {
+                    RimForm::Rounded
+                } else {
+                    RimForm::Flat
+                }
+            }
+            several => several[rng.random_range(0..several.len())],
+        }
+    }
+
+    /// A base form; no draw at all where only one is allowed.
+    fn draw_base(&self, rng: &mut impl Rng) -> BaseForm {
+        let mut bases = self.bases.clone();
+        bases.sort_by_key(|form| *form as u8);
+        bases.dedup();
+        match bases.as_slice() {
+            [] => BaseForm::Flat,
+            [only] => *only,
+            several => several[rng.random_range(0..several.len())],
+        }
+    }
+}
+
+/// A swelling of the outer skin along the mid-wall curve (a lip's bead, a ring foot): a
+/// plateau of `height_mm` over `plateau_half_mm` either side of `centre_s_mm`, falling to
+/// nothing over `flank_mm` along a squared cosine, so that the skin stays smooth.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Swelling {
+    centre_s_mm: f64,
+    plateau_half_mm: f64,
+    flank_mm: f64,
+    height_mm: f64,
+}
+
+impl Swelling {
+    fn at(&self, s_mm: f64) -> f64 {
+        let beyond = (s_mm - self.centre_s_mm).abs() - self.plateau_half_mm;
+        if beyond <= 0.0 {
+            self.height_mm
+        } else if beyond < self.flank_mm {
+            self.height_mm * (0.5 * std::f64::consts::PI * beyond / self.flank_mm).cos().powi(2)
+        } else {
+            0.0
+        }
+    }
+
+    fn support_s_mm(&self) -> [f64; 2] {
+        let half = self.plateau_half_mm + self.flank_mm;
+        [self.centre_s_mm - half, self.centre_s_mm + half]
+    }
 }
 
 /// The angle up to which a rounded rim's cap turns before its narrow flat top, radians.
@@ -116,6 +257,16 @@ pub struct VesselProfile {
     pub wall_thickness_mm: f64,
     /// How the wall ends at the rim.
     pub rim_form: RimForm,
+    /// How the base meets the ground.
+    pub base_form: BaseForm,
+    /// Swellings of the outer skin: a thickened lip's bead, a ring foot.
+    outer_swellings: Vec<Swelling>,
+    /// Height added to the whole curve so that a ring foot stands on the plane where the
+    /// flat underside would, mm.
+    lift_mm: f64,
+    /// Arc length where the outer skin leaves the standing plane: the base's edge, or a
+    /// ring foot's outer flank.
+    standing_edge_s_mm: f64,
     step_mm: f64,
     points: Vec<[f64; 2]>,
     normals: Vec<[f64; 2]>,
@@ -135,14 +286,32 @@ const MIN_BEND_RADIUS_PER_THICKNESS: f64 = 0.7;
 
 impl VesselProfile {
     /// A random profile of `shape`, with realistic proportions (rim radius 60-200 mm,
-    /// wall 4-10 mm).
-    pub fn random(shape: VesselShape, rng: &mut impl Rng) -> Self {
+    /// wall 4-10 mm), its lip and base drawn from `forms`.
+    pub fn random(shape: VesselShape, forms: &ProfileForms, rng: &mut impl Rng) -> Self {
         loop {
             let (control, thickness) = control_polygon(shape, rng);
-            if let Some(profile) = Self::from_control_polygon(shape, &control, thickness) {
-                let rim_form = if rng.random_bool(0.7) { RimForm::Rounded } else { RimForm::Flat };
-                return profile.with_rim_form(rim_form);
-            }
+            let Some(profile) = Self::from_control_polygon(shape, &control, thickness) else {
+                continue;
+            };
+            let profile = match forms.draw_lip(rng) {
+                RimForm::Thickened => {
+                    let (height, width) = (thickness * uniform(rng, 0.4, 0.7), thickness * uniform(rng, 1.2, 2.0));
+                    profile.with_thickened_lip(height, width)
+                }
+                form => profile.with_rim_form(form),
+            };
+            let profile = match forms.draw_base(rng) {
+                BaseForm::RingFoot => {
+                    let fraction = uniform(rng, 0.55, 0.85);
+                    let (height, width) = (uniform(rng, 3.0, 7.0), thickness * uniform(rng, 1.5, 2.5));
+                    match profile.with_ring_foot(fraction, height, width) {
+                        Some(footed) => footed,
+                        None => continue,
+                    }
+                }
+                BaseForm::Flat => profile,
+            };
+            return profile;
         }
     }
 
@@ -217,6 +386,10 @@ impl VesselProfile {
             shape,
             wall_thickness_mm,
             rim_form: RimForm::Flat,
+            base_form: BaseForm::Flat,
+            outer_swellings: Vec::new(),
+            lift_mm: 0.0,
+            standing_edge_s_mm: 0.0,
             step_mm,
             points,
             normals,
@@ -230,6 +403,7 @@ impl VesselProfile {
             profile.outer_at(s)[1] > base_z + BASE_EDGE_RISE_MM
         })?;
         profile.base_edge_s_mm = base_edge_index as f64 * step_mm;
+        profile.standing_edge_s_mm = profile.base_edge_s_mm;
         // The inner skin must stay off the axis except at the base centre.
         let inner_crosses_axis = (0..count).any(|k| {
             let s = k as f64 * step_mm;
@@ -258,22 +432,93 @@ impl VesselProfile {
         let norm = normal[0].hypot(normal[1]);
         ProfileSample {
             r_mm: (a[0] + w * (b[0] - a[0])).max(0.0),
-            z_mm: a[1] + w * (b[1] - a[1]),
+            z_mm: a[1] + w * (b[1] - a[1]) + self.lift_mm,
             normal_r: normal[0] / norm,
             normal_z: normal[1] / norm,
         }
     }
 
-    /// The same profile ending in a rim of `form`.
+    /// The same profile ending in a rim of `form` (a thickened lip's bead 0.55 wall
+    /// thicknesses out and 1.6 tall).
     pub fn with_rim_form(self, form: RimForm) -> Self {
-        VesselProfile { rim_form: form, ..self }
+        match form {
+            RimForm::Thickened => {
+                let thickness = self.wall_thickness_mm;
+                self.with_thickened_lip(0.55 * thickness, 1.6 * thickness)
+            }
+            _ => VesselProfile { rim_form: form, ..self },
+        }
+    }
+
+    /// The same profile ending in a rounded lip with a bead outside, `height_mm` out from
+    /// the skin and `width_mm` tall along the wall (its widest part half of that), centred a
+    /// quarter of its width below the rounding. Where the wall bends too tightly under the bead for the
+    /// outer skin to stay unfolded, the lip is left rounded.
+    pub fn with_thickened_lip(self, height_mm: f64, width_mm: f64) -> Self {
+        let mut profile = VesselProfile { rim_form: RimForm::Thickened, ..self };
+        let flank = 0.5 * width_mm;
+        let bead = Swelling { centre_s_mm: profile.rim_cap_start_s_mm() - 0.25 * width_mm, plateau_half_mm: 0.5 * flank, flank_mm: 0.5 * flank, height_mm };
+        let reach = 0.5 * profile.wall_thickness_mm + height_mm;
+        if profile.tightest_bend_radius_mm(bead.support_s_mm()) < reach * MIN_BEND_RADIUS_PER_THICKNESS / 0.5 {
+            profile.rim_form = RimForm::Rounded;
+            return profile;
+        }
+        profile.outer_swellings.push(bead);
+        profile
+    }
+
+    /// The same profile standing on a ring foot under the floor: a ridge `height_mm` high
+    /// and `width_mm` wide at its foot (its flat bottom half of that), whose centre
+    /// lies at `radius_fraction` of the base's radius. `None` where the ridge would not
+    /// lie wholly on the flat floor.
+    pub fn with_ring_foot(self, radius_fraction: f64, height_mm: f64, width_mm: f64) -> Option<Self> {
+        let ring_radius = radius_fraction * self.base_radius_mm();
+        let centre = (0..self.points.len()).map(|k| k as f64 * self.step_mm).find(|&s| self.sample(s).r_mm >= ring_radius)?;
+        let foot = Swelling { centre_s_mm: centre, plateau_half_mm: width_mm / 4.0, flank_mm: width_mm / 4.0, height_mm };
+        let [from, to] = foot.support_s_mm();
+        let on_floor = |s: f64| self.sample(s).normal_z < -0.999;
+        if from <= 0.0 || !(0..=20).all(|k| on_floor(from + (to - from) * k as f64 / 20.0)) {
+            return None;
+        }
+        let mut profile = VesselProfile { base_form: BaseForm::RingFoot, lift_mm: self.lift_mm + height_mm, ..self };
+        profile.outer_swellings.push(foot);
+        // The vessel stands on the ridge: its base radius is where the outer skin, beyond
+        // the ridge's lowest point, has risen above the ground.
+        let standing = profile.outer_at(centre)[1];
+        let risen = |s: f64| profile.outer_at(s)[1] > standing + BASE_EDGE_RISE_MM;
+        let leaves = (0..profile.points.len()).map(|k| k as f64 * profile.step_mm).find(|&s| s > centre && risen(s))?;
+        // The flank rises steeply over a table step: bisect to the rise itself.
+        let (mut below, mut above) = (leaves - profile.step_mm, leaves);
+        for _ in 0..30 {
+            let middle = 0.5 * (below + above);
+            if risen(middle) {
+                above = middle;
+            } else {
+                below = middle;
+            }
+        }
+        profile.standing_edge_s_mm = above;
+        Some(profile)
+    }
+
+    /// The tightest bend radius of the mid-wall curve over `range` of arc length, mm.
+    fn tightest_bend_radius_mm(&self, [from, to]: [f64; 2]) -> f64 {
+        let first = ((from / self.step_mm).floor().max(0.0) as usize).min(self.normals.len() - 1);
+        let last = ((to / self.step_mm).ceil().max(0.0) as usize).min(self.normals.len() - 1);
+        (first..last)
+            .map(|k| {
+                let (a, b) = (self.normals[k], self.normals[k + 1]);
+                let turn = (a[0] * b[1] - a[1] * b[0]).abs().max(1e-12);
+                self.step_mm / turn
+            })
+            .fold(f64::INFINITY, f64::min)
     }
 
     /// Arc length (mid-wall) where the rim's rounding starts; the rim's end for a flat rim.
     pub fn rim_cap_start_s_mm(&self) -> f64 {
         match self.rim_form {
             RimForm::Flat => self.length_mm(),
-            RimForm::Rounded => self.length_mm() - 0.5 * self.wall_thickness_mm * ROUNDED_RIM_CAP_ANGLE_RAD.sin(),
+            RimForm::Rounded | RimForm::Thickened => self.length_mm() - 0.5 * self.wall_thickness_mm * ROUNDED_RIM_CAP_ANGLE_RAD.sin(),
         }
     }
 
@@ -292,7 +537,8 @@ impl VesselProfile {
     /// The point of the skin on side `side` (+1 outer, -1 inner) at arc length `s_mm`.
     pub fn skin_at(&self, s_mm: f64, side: f64) -> [f64; 2] {
         let sample = self.sample(s_mm);
-        let offset = side * self.half_thickness_mm(s_mm);
+        let swelling = if side > 0.0 { self.outer_swellings.iter().map(|w| w.at(s_mm)).sum() } else { 0.0 };
+        let offset = side * self.half_thickness_mm(s_mm) + swelling;
         [(sample.r_mm + offset * sample.normal_r).max(0.0), sample.z_mm + offset * sample.normal_z]
     }
 
@@ -346,22 +592,31 @@ impl VesselProfile {
         polyline
     }
 
-    /// Arc length (mid-wall) where the outer skin rises 1 mm (`BASE_EDGE_RISE_MM`) above the
-    /// standing plane: the end of the base.
+    /// Arc length (mid-wall) where the underside turns into the wall: where the outer skin
+    /// of the floor rises 1 mm (`BASE_EDGE_RISE_MM`) above its flat part. The end of the
+    /// base; on a ring-footed vessel, beyond the foot.
     pub fn base_edge_s_mm(&self) -> f64 {
         self.base_edge_s_mm
     }
 
-    /// Radius of the base: the outer skin's radius where it leaves the standing plane
-    /// (rises 1 mm above it), mm.
+    /// Radius of the base as a radius chart reads it: the outer skin's radius where it
+    /// leaves the standing plane (rises 1 mm above it), at the base's edge or a ring foot's
+    /// outer flank, mm.
     pub fn base_radius_mm(&self) -> f64 {
-        self.outer_at(self.base_edge_s_mm)[0]
+        self.outer_at(self.standing_edge_s_mm)[0]
     }
 
-    /// Radius of the rim: the outer skin's radius at the rim's outer edge (where a
-    /// rounded rim's rounding starts), mm.
+    /// Radius of the rim: the outer skin's radius at the lip's outer edge, where a radius
+    /// chart reads it (where a rounded rim's rounding starts; a thickened lip's widest
+    /// point), mm.
     pub fn rim_radius_mm(&self) -> f64 {
-        self.outer_at(self.rim_cap_start_s_mm())[0]
+        let at_cap = self.outer_at(self.rim_cap_start_s_mm())[0];
+        if self.rim_form != RimForm::Thickened {
+            return at_cap;
+        }
+        let from = self.outer_swellings.iter().map(|w| w.support_s_mm()[0]).filter(|&s| s > self.base_edge_s_mm).fold(self.length_mm(), f64::min);
+        let count = ((self.length_mm() - from) / (0.1 * self.step_mm)).ceil() as usize;
+        (0..=count).map(|k| self.outer_at(from + (self.length_mm() - from) * k as f64 / count.max(1) as f64)[0]).fold(at_cap, f64::max)
     }
 
     /// Height of the vessel: the highest point of either skin above the standing plane, mm.

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::deform::Deformation;
 pub use super::shape::distance_to_polyline;
-use super::shape::{RimForm, VesselShape};
+use super::shape::{BaseForm, RimForm, VesselShape};
 use crate::mesh::Point;
 use crate::axis::{Axis, AxisRecord};
 
@@ -142,8 +142,16 @@ pub struct VesselTruth {
     pub wall_thickness_mm: f64,
     /// How the wall ends at the rim.
     pub rim_form: RimForm,
+    /// How the base meets the ground.
+    #[serde(default = "flat_base")]
+    pub base_form: BaseForm,
     /// The deformation applied (ovality, rim tilt, wobble).
     pub deformation: Deformation,
+}
+
+/// The base form of a truth file written before ring feet were made.
+fn flat_base() -> BaseForm {
+    BaseForm::Flat
 }
 
 /// The ground truth of a synthetic sherd.

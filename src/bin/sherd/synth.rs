@@ -10,7 +10,8 @@ use rand::{RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 use sherd::synth::{
-    generate_vessel, synthetic_sherd, write_sherd, HardCase, SherdOptions, SherdPart, SynthSherd, VesselOptions, VesselShape,
+    generate_vessel, synthetic_sherd, write_sherd, BaseForm, HardCase, ProfileForms, RimForm, SherdOptions, SherdPart, SynthSherd,
+    VesselOptions, VesselShape,
 };
 use sherd::{Error, Result};
 
@@ -22,7 +23,7 @@ const DEFAULT_SHERD_FACES: usize = 20_000;
 /// Arguments of `sherd synth`.
 #[derive(clap::Args)]
 #[command(
-    after_help = "Examples:\n  sherd synth out/                          # one vessel broken into 20-40 fragments, seed 1\n  sherd synth out/ --seed 7 --count 3       # three vessels (seeds 7, 8, 9)\n  sherd synth out/ --fragments 30 --cell-mm 1\n  sherd synth out/ --part rim --faces 200000 --seed 13   # one rim sherd per seed\n  sherd synth -o out/ --hard-case flat_base     # a piece orientation must refuse\n\n\
+    after_help = "Examples:\n  sherd synth out/                          # one vessel broken into 20-40 fragments, seed 1\n  sherd synth out/ --seed 7 --count 3       # three vessels (seeds 7, 8, 9)\n  sherd synth out/ --fragments 30 --cell-mm 1\n  sherd synth out/ --part rim --faces 200000 --seed 13   # one rim sherd per seed\n  sherd synth out/ --lip-forms flat,rounded,thickened --base-forms flat,ring_foot\n  sherd synth -o out/ --hard-case flat_base     # a piece orientation must refuse\n\n\
 Each sherd is NAME.ply (moved by a random rigid motion unless --no-motion) beside\n\
 NAME.truth.json: the axis point and direction in the file's frame, rim radius, sector\n\
 angle and part. The same seed and options give the same files."
@@ -79,12 +80,48 @@ pub struct SynthArgs {
     /// Drawn from 20 to 40 with the seed when absent.
     #[arg(long, conflicts_with_all = ["part", "hard_case", "faces"])]
     pub fragments: Option<usize>,
+    /// Lip forms the vessels are drawn from, comma-separated: flat, rounded, thickened
+    /// (a bead outside, below the top).
+    #[arg(long, value_delimiter = ',', default_values_t = [RimForm::Flat, RimForm::Rounded].map(Form))]
+    pub lip_forms: Vec<Form<RimForm>>,
+    /// Base forms the vessels are drawn from, comma-separated: flat, ring_foot.
+    #[arg(long, value_delimiter = ',', default_values_t = [Form(BaseForm::Flat)])]
+    pub base_forms: Vec<Form<BaseForm>>,
     /// Mesh cell size of a broken vessel, mm (each cell gives four triangles per skin).
     #[arg(long, default_value_t = 2.0, conflicts_with_all = ["part", "hard_case", "faces"])]
     pub cell_mm: f64,
 }
 
+/// A lip or base form as clap reads and shows it, by the library's names.
+#[derive(Clone, Copy, Debug)]
+pub struct Form<T>(pub T);
+
+impl<T: std::str::FromStr<Err = Error>> std::str::FromStr for Form<T> {
+    type Err = Error;
+
+    fn from_str(text: &str) -> Result<Self> {
+        text.parse().map(Form)
+    }
+}
+
+impl std::fmt::Display for Form<RimForm> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.0.name())
+    }
+}
+
+impl std::fmt::Display for Form<BaseForm> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.0.name())
+    }
+}
+
 impl SynthArgs {
+    /// The lip and base forms asked for.
+    fn forms(&self) -> ProfileForms {
+        ProfileForms { lips: self.lip_forms.iter().map(|f| f.0).collect(), bases: self.base_forms.iter().map(|f| f.0).collect() }
+    }
+
     /// The output folder, positional or `-o`.
     fn folder(&self) -> &Path {
         self.outdir.as_deref().or(self.output.as_deref()).expect("clap requires OUTDIR or -o")
@@ -124,6 +161,7 @@ pub fn run(arguments: &SynthArgs) -> Result<()> {
                     noise_mm: arguments.noise_mm,
                     deformation_scale: if arguments.ideal { 0.0 } else { arguments.deformation },
                     random_motion: !arguments.no_motion,
+                    forms: arguments.forms(),
                     ..Default::default()
                 };
                 generate_vessel(seed, &options).fragments
@@ -137,6 +175,7 @@ pub fn run(arguments: &SynthArgs) -> Result<()> {
                     deformation_scale: if arguments.ideal { 0.0 } else { arguments.deformation },
                     random_motion: !arguments.no_motion,
                     hard_case: arguments.hard_case,
+                    forms: arguments.forms(),
                     ..Default::default()
                 };
                 vec![synthetic_sherd(seed, &options)]
