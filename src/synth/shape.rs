@@ -302,7 +302,7 @@ impl VesselProfile {
             };
             let profile = match forms.draw_base(rng) {
                 BaseForm::RingFoot => {
-                    let fraction = uniform(rng, 0.55, 0.85);
+                    let fraction = uniform(rng, 0.55, 1.0);
                     let (height, width) = (uniform(rng, 3.0, 7.0), thickness * uniform(rng, 1.5, 2.5));
                     match profile.with_ring_foot(fraction, height, width) {
                         Some(footed) => footed,
@@ -469,15 +469,21 @@ impl VesselProfile {
 
     /// The same profile standing on a ring foot under the floor: a ridge `height_mm` high
     /// and `width_mm` wide at its foot (its flat bottom half of that), whose centre
-    /// lies at `radius_fraction` of the base's radius. `None` where the ridge would not
-    /// lie wholly on the flat floor.
+    /// lies at `radius_fraction` of the base's radius, or, where the ridge would reach past
+    /// the flat floor, as far out as the floor allows (a foot under the wall). `None` where
+    /// the floor is too small to hold it.
     pub fn with_ring_foot(self, radius_fraction: f64, height_mm: f64, width_mm: f64) -> Option<Self> {
         let ring_radius = radius_fraction * self.base_radius_mm();
-        let centre = (0..self.points.len()).map(|k| k as f64 * self.step_mm).find(|&s| self.sample(s).r_mm >= ring_radius)?;
-        let foot = Swelling { centre_s_mm: centre, plateau_half_mm: width_mm / 4.0, flank_mm: width_mm / 4.0, height_mm };
-        let [from, to] = foot.support_s_mm();
         let on_floor = |s: f64| self.sample(s).normal_z < -0.999;
-        if from <= 0.0 || !(0..=20).all(|k| on_floor(from + (to - from) * k as f64 / 20.0)) {
+        let arc_lengths = || (0..self.points.len()).map(|k| k as f64 * self.step_mm);
+        let floor_end = arc_lengths().take_while(|&s| on_floor(s)).last()?;
+        let wanted_centre = arc_lengths().find(|&s| self.sample(s).r_mm >= ring_radius)?;
+        // A foot that would reach past the flat floor stands under the wall instead, its
+        // outer flank running into the wall's foot.
+        let half_support = 0.5 * width_mm;
+        let centre = wanted_centre.min(floor_end - half_support);
+        let foot = Swelling { centre_s_mm: centre, plateau_half_mm: width_mm / 4.0, flank_mm: width_mm / 4.0, height_mm };
+        if foot.support_s_mm()[0] <= 0.0 {
             return None;
         }
         let mut profile = VesselProfile { base_form: BaseForm::RingFoot, lift_mm: self.lift_mm + height_mm, ..self };
