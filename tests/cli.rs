@@ -136,6 +136,23 @@ fn orient_json_on_the_real_scan_a011_keeps_the_contract() {
     }
 }
 
+/// `synth --lip-forms --base-forms` makes the forms asked for and says so in the truth;
+/// a form it does not know is refused by name.
+#[test]
+fn synth_makes_the_lip_and_base_forms_asked_for() {
+    let dir = tempfile::tempdir().unwrap();
+    let files = synth(dir.path(), &["--part", "rim_to_base", "--faces", "4000", "--count", "2", "--lip-forms", "thickened", "--base-forms", "ring_foot"]);
+    for file in &files {
+        let vessel = &truth_of(file)["vessel"];
+        assert_eq!(vessel["base_form"], "ring_foot", "{}", file.display());
+        // A wall too tightly bent under the lip keeps it rounded rather than folding it.
+        assert!(vessel["rim_form"] == "thickened" || vessel["rim_form"] == "rounded", "{}: {}", file.display(), vessel["rim_form"]);
+    }
+    let refused = sherd().args(["synth", "-o"]).arg(dir.path()).args(["--lip-forms", "beaded"]).assert().failure();
+    let message = String::from_utf8_lossy(&refused.get_output().stderr).into_owned();
+    assert!(message.contains("unknown lip form \"beaded\"") && message.contains("thickened"), "{message}");
+}
+
 #[test]
 fn orient_json_gives_the_axis_base_to_rim_and_the_rim_radius() {
     let dir = tempfile::tempdir().unwrap();
