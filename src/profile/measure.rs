@@ -466,7 +466,6 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
     measurements.base_sector_deg = measurements.base_radius_mm.and_then(|r| edge_sector_deg(&oriented, Edge::Base, r));
     measurements.base_diameter_mm = measurements.base_radius_mm.map(|r| 2.0 * r);
 
-
     match bootstrap_axes(bootstrap_mesh, axis, &options.refine, &options.bootstrap) {
         Ok(replicates) if !replicates.is_empty() => {
             measurements.axis_angle_interval_deg = angle_interval_deg(axis, &replicates, &options.bootstrap);
