@@ -163,20 +163,11 @@ impl Default for ProfileForms {
 }
 
 impl ProfileForms {
-    /// Every form the generator can make.
-    pub fn all() -> Self {
-        ProfileForms { lips: RimForm::ALL.to_vec(), bases: BaseForm::ALL.to_vec() }
-    }
-
     /// A lip form. The draw for the default pair is the one the generator has always
     /// made, so that the corpora of a seed stay the same files.
     fn draw_lip(&self, rng: &mut impl Rng) -> RimForm {
-        let mut lips = self.lips.clone();
-        lips.sort_by_key(|form| *form as u8);
-        lips.dedup();
-        match lips.as_slice() {
+        match distinct(&self.lips, |form| form as u8).as_slice() {
             [] => RimForm::Rounded,
-            [only] => *only,
             [RimForm::Flat, RimForm::Rounded] => {
                 if rng.random_bool(0.7) {
                     RimForm::Rounded
@@ -184,20 +175,33 @@ impl ProfileForms {
                     RimForm::Flat
                 }
             }
-            several => several[rng.random_range(0..several.len())],
+            several => draw_one(several, rng),
         }
     }
 
     /// A base form; no draw at all where only one is allowed.
     fn draw_base(&self, rng: &mut impl Rng) -> BaseForm {
-        let mut bases = self.bases.clone();
-        bases.sort_by_key(|form| *form as u8);
-        bases.dedup();
-        match bases.as_slice() {
+        match distinct(&self.bases, |form| form as u8).as_slice() {
             [] => BaseForm::Flat,
-            [only] => *only,
-            several => several[rng.random_range(0..several.len())],
+            several => draw_one(several, rng),
         }
+    }
+}
+
+/// The distinct forms of `forms` in their declared order, so that a draw does not hang on
+/// how they were listed.
+fn distinct<T: Copy>(forms: &[T], rank: fn(T) -> u8) -> Vec<T> {
+    let mut forms = forms.to_vec();
+    forms.sort_by_key(|&form| rank(form));
+    forms.dedup_by_key(|form| rank(*form));
+    forms
+}
+
+/// One of `forms` (not empty) with equal chances; the only one without a draw.
+fn draw_one<T: Copy>(forms: &[T], rng: &mut impl Rng) -> T {
+    match forms {
+        [only] => *only,
+        several => several[rng.random_range(0..several.len())],
     }
 }
 

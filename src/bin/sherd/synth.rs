@@ -82,44 +82,20 @@ pub struct SynthArgs {
     pub fragments: Option<usize>,
     /// Lip forms the vessels are drawn from, comma-separated: flat, rounded, thickened
     /// (a bead outside, below the top).
-    #[arg(long, value_delimiter = ',', default_values_t = [RimForm::Flat, RimForm::Rounded].map(Form))]
-    pub lip_forms: Vec<Form<RimForm>>,
+    #[arg(long, value_delimiter = ',', default_value = "flat,rounded")]
+    pub lip_forms: Vec<RimForm>,
     /// Base forms the vessels are drawn from, comma-separated: flat, ring_foot.
-    #[arg(long, value_delimiter = ',', default_values_t = [Form(BaseForm::Flat)])]
-    pub base_forms: Vec<Form<BaseForm>>,
+    #[arg(long, value_delimiter = ',', default_value = "flat")]
+    pub base_forms: Vec<BaseForm>,
     /// Mesh cell size of a broken vessel, mm (each cell gives four triangles per skin).
     #[arg(long, default_value_t = 2.0, conflicts_with_all = ["part", "hard_case", "faces"])]
     pub cell_mm: f64,
 }
 
-/// A lip or base form as clap reads and shows it, by the library's names.
-#[derive(Clone, Copy, Debug)]
-pub struct Form<T>(pub T);
-
-impl<T: std::str::FromStr<Err = Error>> std::str::FromStr for Form<T> {
-    type Err = Error;
-
-    fn from_str(text: &str) -> Result<Self> {
-        text.parse().map(Form)
-    }
-}
-
-impl std::fmt::Display for Form<RimForm> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.0.name())
-    }
-}
-
-impl std::fmt::Display for Form<BaseForm> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.0.name())
-    }
-}
-
 impl SynthArgs {
     /// The lip and base forms asked for.
     fn forms(&self) -> ProfileForms {
-        ProfileForms { lips: self.lip_forms.iter().map(|f| f.0).collect(), bases: self.base_forms.iter().map(|f| f.0).collect() }
+        ProfileForms { lips: self.lip_forms.clone(), bases: self.base_forms.clone() }
     }
 
     /// The output folder, positional or `-o`.
