@@ -263,8 +263,10 @@ pub struct VesselProfile {
     pub rim_form: RimForm,
     /// How the base meets the ground.
     pub base_form: BaseForm,
-    /// Swellings of the outer skin: a thickened lip's bead, a ring foot.
-    outer_swellings: Vec<Swelling>,
+    /// A thickened lip's bead: a swelling of the outer skin below the rounding.
+    bead: Option<Swelling>,
+    /// A ring foot's swelling of the outer skin under the floor.
+    foot: Option<Swelling>,
     /// Height added to the whole curve so that a ring foot stands on the plane where the
     /// flat underside would, mm.
     lift_mm: f64,
@@ -391,7 +393,8 @@ impl VesselProfile {
             wall_thickness_mm,
             rim_form: RimForm::Flat,
             base_form: BaseForm::Flat,
-            outer_swellings: Vec::new(),
+            bead: None,
+            foot: None,
             lift_mm: 0.0,
             standing_edge_s_mm: 0.0,
             step_mm,
@@ -467,7 +470,7 @@ impl VesselProfile {
             profile.rim_form = RimForm::Rounded;
             return profile;
         }
-        profile.outer_swellings.push(bead);
+        profile.bead = Some(bead);
         profile
     }
 
@@ -491,7 +494,7 @@ impl VesselProfile {
             return None;
         }
         let mut profile = VesselProfile { base_form: BaseForm::RingFoot, lift_mm: self.lift_mm + height_mm, ..self };
-        profile.outer_swellings.push(foot);
+        profile.foot = Some(foot);
         // The vessel stands on the ridge: its base radius is where the outer skin, beyond
         // the ridge's lowest point, has risen above the ground.
         let standing = profile.outer_at(centre)[1];
@@ -547,7 +550,7 @@ impl VesselProfile {
     /// The point of the skin on side `side` (+1 outer, -1 inner) at arc length `s_mm`.
     pub fn skin_at(&self, s_mm: f64, side: f64) -> [f64; 2] {
         let sample = self.sample(s_mm);
-        let swelling = if side > 0.0 { self.outer_swellings.iter().map(|w| w.at(s_mm)).sum() } else { 0.0 };
+        let swelling = if side > 0.0 { [self.bead, self.foot].iter().flatten().map(|w| w.at(s_mm)).sum() } else { 0.0 };
         let offset = side * self.half_thickness_mm(s_mm) + swelling;
         [(sample.r_mm + offset * sample.normal_r).max(0.0), sample.z_mm + offset * sample.normal_z]
     }
@@ -621,10 +624,10 @@ impl VesselProfile {
     /// point), mm.
     pub fn rim_radius_mm(&self) -> f64 {
         let at_cap = self.outer_at(self.rim_cap_start_s_mm())[0];
-        if self.rim_form != RimForm::Thickened {
+        let Some(bead) = self.bead else {
             return at_cap;
-        }
-        let from = self.outer_swellings.iter().map(|w| w.support_s_mm()[0]).filter(|&s| s > self.base_edge_s_mm).fold(self.length_mm(), f64::min);
+        };
+        let from = bead.support_s_mm()[0].min(self.length_mm());
         let count = ((self.length_mm() - from) / (0.1 * self.step_mm)).ceil() as usize;
         (0..=count).map(|k| self.outer_at(from + (self.length_mm() - from) * k as f64 / count.max(1) as f64)[0]).fold(at_cap, f64::max)
     }
