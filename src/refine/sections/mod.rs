@@ -8,11 +8,13 @@
 //! slab of vertices gains and loses points as the axis turns, which makes the objective
 //! jump). Point clouds without faces fall back to slabs of vertices.
 //!
-//! One file a part, each using only those before it: `frame` (a candidate axis and its
-//! frame), `skins` (which skin a vertex is on), `vertical` (sectors of the preserved arc),
-//! `surface` (the fragment prepared around the start axis) and `horizontal` (its cuts).
+//! One file a part, each using only those before it: `memo` (values derived from the
+//! points, made once), `frame` (a candidate axis and its frame), `skins` (which skin a
+//! vertex is on), `vertical` (sectors of the preserved arc), `surface` (the fragment
+//! prepared around the start axis) and `horizontal` (its cuts).
 
 mod frame;
+mod memo;
 mod horizontal;
 mod skins;
 mod surface;

@@ -4,6 +4,7 @@
 use nalgebra::Isometry3;
 
 use super::frame::{tilts_along, AxisParameters, CandidateFrame};
+use super::memo::Memo;
 use super::skins::{skin_by_normal, skins_by_smooth_regions, vertex_normals, Surface};
 use crate::mesh::{Mesh, Point, Vector};
 use crate::orient::{Axis, Skin};
@@ -17,7 +18,8 @@ pub struct PreparedSurface {
     pub start_axis: Axis,
     /// Scan frame to start frame (start axis on z, centroid at height 0).
     pub start_frame: Isometry3<f64>,
-    /// All vertices in the start frame.
+    /// All vertices in the start frame; unchanged after preparation, since what the
+    /// criteria derive from them is kept ([`PreparedSurface::derived`]).
     pub points: Vec<Point>,
     /// Unit vertex normals in the start frame.
     pub normals: Vec<Vector>,
@@ -34,6 +36,8 @@ pub struct PreparedSurface {
     pub surface: Surface,
     /// Mean edge length of the mesh, mm; `None` for a point cloud.
     pub mean_edge_mm: Option<f64>,
+    /// What the criteria derive from `points` alone, made once ([`PreparedSurface::derived`]).
+    memo: Memo,
 }
 
 impl PreparedSurface {
@@ -105,7 +109,15 @@ impl PreparedSurface {
             slab_half_thickness_mm,
             surface,
             mean_edge_mm,
+            memo: Memo::default(),
         })
+    }
+
+    /// The value of type `T` under `key` that `make` derives from [`PreparedSurface::points`]
+    /// (and from `key`, nothing else), made on the first call and shared by the later
+    /// ones and by copies of the surface. The points must not change after it is made.
+    pub fn derived<T: std::any::Any + Send + Sync>(&self, key: u64, make: impl FnOnce() -> T) -> std::sync::Arc<T> {
+        self.memo.get_or_make(key, make)
     }
 
     /// The candidate axis of `parameters` in the scan frame.

@@ -18,6 +18,8 @@ mod crests;
 mod evidence;
 mod plane;
 
+use std::sync::Arc;
+
 use serde::{Deserialize, Serialize};
 
 use super::objective::{minimize, FreeParameters, Minimum, Objective, SearchSettings};
@@ -87,8 +89,9 @@ impl Edge {
 /// Eq. 7 on a prepared fragment.
 pub struct TangentObjective {
     /// Candidate extremes of each vertical section (fixed in the start frame: the tilts
-    /// searched are a few degrees, far too little to move a vertex to another sector).
-    sections: Vec<SectionCandidates>,
+    /// searched are a few degrees, far too little to move a vertex to another sector),
+    /// shared by every objective on the same surface, edge and section count.
+    sections: Arc<Vec<SectionCandidates>>,
     /// Rim or base.
     pub edge: Edge,
     /// The tolerance epsilon, millimetres.
@@ -100,20 +103,10 @@ pub struct TangentObjective {
 impl TangentObjective {
     /// Divides the fragment into `section_count` vertical sections about the start axis.
     pub fn new(surface: &PreparedSurface, edge: Edge, tolerance_mm: f64, section_count: usize) -> Self {
-        let sections = vertical_sections(&surface.points, section_count.max(3));
-        let sections = sections
-            .into_iter()
-            .map(|indices| {
-                let points: Vec<_> = indices.iter().map(|&i| surface.points[i]).collect();
-                let extreme = match edge {
-                    Edge::Rim => points.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max),
-                    Edge::Base => points.iter().map(|p| p.z).fold(f64::INFINITY, f64::min),
-                };
-                points.into_iter().filter(|p| (p.z - extreme).abs() <= CANDIDATE_BAND_MM).enumerate().collect()
-            })
-            .filter(|points: &Vec<_>| !points.is_empty())
-            .map(|points| SectionCandidates::new(points, edge))
-            .collect();
+        let section_count = section_count.max(3);
+        // The level tests and the levelling ask for the same sections many times.
+        let key = (section_count as u64) << 1 | u64::from(edge == Edge::Base);
+        let sections = surface.derived(key, || candidate_sections(surface, edge, section_count));
         TangentObjective { sections, edge, tolerance_mm, section_weights: None }
     }
 
@@ -150,6 +143,24 @@ impl TangentObjective {
         let height = level.iter().map(|p| p.z).sum::<f64>() / level.len() as f64;
         Some(axis_through([parameters[0], parameters[1]], circle.center, height))
     }
+}
+
+/// The candidate extremes of `edge` in each of `section_count` vertical sections, those
+/// with none left out.
+fn candidate_sections(surface: &PreparedSurface, edge: Edge, section_count: usize) -> Vec<SectionCandidates> {
+    vertical_sections(&surface.points, section_count)
+        .into_iter()
+        .map(|indices| {
+            let points: Vec<_> = indices.iter().map(|&i| surface.points[i]).collect();
+            let extreme = match edge {
+                Edge::Rim => points.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max),
+                Edge::Base => points.iter().map(|p| p.z).fold(f64::INFINITY, f64::min),
+            };
+            points.into_iter().filter(|p| (p.z - extreme).abs() <= CANDIDATE_BAND_MM).enumerate().collect()
+        })
+        .filter(|points: &Vec<_>| !points.is_empty())
+        .map(|points| SectionCandidates::new(points, edge))
+        .collect()
 }
 
 impl Objective for TangentObjective {
