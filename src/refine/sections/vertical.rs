@@ -95,11 +95,22 @@ pub fn vertical_sections(points: &[Point], count: usize) -> Vec<Vec<usize>> {
     let span = (std::f64::consts::TAU - largest_gap).max(1e-12);
     let mut sections = vec![Vec::new(); count];
     for (i, a) in angles.iter().enumerate() {
-        let offset = (a - start).rem_euclid(std::f64::consts::TAU);
+        let offset = within_one_turn(a - start);
         let index = ((offset / span * count as f64) as usize).min(count - 1);
         sections[index].push(i);
     }
     sections
+}
+
+/// `difference.rem_euclid(TAU)`, bit for bit, without the call to `fmod` it makes: the
+/// difference of two angles in `[-pi, pi]` lies within a turn, where the remainder is
+/// the difference itself (the measurements cut a 100k-vertex scan into vertical sections
+/// once per bootstrap replicate, and `fmod` was a ninth of that).
+#[inline]
+fn within_one_turn(difference: f64) -> f64 {
+    const TURN: f64 = std::f64::consts::TAU;
+    let remainder = if difference.abs() < TURN { difference } else { difference % TURN };
+    if remainder < 0.0 { remainder + TURN } else { remainder }
 }
 
 #[cfg(test)]
@@ -132,6 +143,18 @@ mod tests {
             };
             let (start, gap) = largest_angular_gap(&angles);
             assert_eq!((start.to_bits(), gap.to_bits()), sorted_scan(&angles), "case {case}");
+        }
+    }
+
+    #[test]
+    fn within_one_turn_is_rem_euclid_bit_for_bit() {
+        let pi = std::f64::consts::PI;
+        let tau = std::f64::consts::TAU;
+        let special = [0.0, -0.0, pi, -pi, tau, -tau, 2.0 * tau, -7.5, 1e-300, -1e-300, f64::MIN_POSITIVE, f64::INFINITY, f64::NEG_INFINITY, f64::NAN];
+        let near_turn = [tau, -tau, pi, -pi].into_iter().flat_map(|v| [f64::from_bits(v.to_bits() - 1), f64::from_bits(v.to_bits() + 1)]);
+        let spread = (-4000..4000).map(|k| k as f64 * 0.00314159 * 1.0001);
+        for d in special.into_iter().chain(near_turn).chain(spread) {
+            assert_eq!(within_one_turn(d).to_bits(), d.rem_euclid(tau).to_bits(), "{d}");
         }
     }
 
