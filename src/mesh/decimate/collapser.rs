@@ -10,6 +10,8 @@ use crate::mesh::quadric::Quadric;
 use crate::mesh::{Mesh, Point, Vector};
 
 const NONE: u32 = u32::MAX;
+/// [`Collapser::changed_at`] of a removed vertex: later than any collapse count.
+const REMOVED: u32 = u32::MAX;
 pub(super) const BOUNDARY: u8 = 1;
 pub(super) const FROZEN: u8 = 2;
 /// On a texture seam: placed like a boundary vertex.
@@ -48,7 +50,10 @@ pub(super) struct Collapser {
     /// Sum of plane weights per vertex (area), to express costs as distances.
     quadric_area: Vec<f64>,
     pub(super) flags: Vec<u8>,
-    vertex_alive: Vec<bool>,
+    /// The collapse count when each vertex last changed, [`REMOVED`] once merged away:
+    /// a queued candidate is stale when either endpoint's is later than its own. Dead
+    /// and changed vertices in one array, so that the check of every popped candidate
+    /// reads one cache line per endpoint.
     changed_at: Vec<u32>,
     /// Scratch marks for neighbourhood queries, compared with `mark_counter`.
     pub(super) marks: Vec<u32>,
@@ -123,7 +128,6 @@ impl Collapser {
             quadrics: vec![Quadric::default(); vertex_count],
             quadric_area: vec![0.0; vertex_count],
             flags: vec![0; vertex_count],
-            vertex_alive: vec![true; vertex_count],
             changed_at: vec![0; vertex_count],
             marks: vec![0; vertex_count],
             mark_counter: 0,
@@ -275,11 +279,7 @@ impl Collapser {
         while self.live_faces > target_faces && live_vertices > target_vertices {
             let Some(candidate) = self.heap.pop() else { break };
             let (a, b) = (candidate.first, candidate.second);
-            if !self.vertex_alive[a as usize]
-                || !self.vertex_alive[b as usize]
-                || self.changed_at[a as usize] > candidate.pushed_at
-                || self.changed_at[b as usize] > candidate.pushed_at
-            {
+            if self.changed_at[a as usize] > candidate.pushed_at || self.changed_at[b as usize] > candidate.pushed_at {
                 continue;
             }
             if !self.topology_allows(a, b) {
@@ -357,7 +357,7 @@ impl Collapser {
         self.quadrics[k] = self.quadrics[k] + self.quadrics[r];
         self.quadric_area[k] += self.quadric_area[r];
         self.flags[k] |= self.flags[r];
-        self.vertex_alive[r] = false;
+        self.changed_at[r] = REMOVED;
 
         let mut corner = self.first_corner[r];
         self.first_corner[r] = NONE;
@@ -438,11 +438,8 @@ impl Collapser {
         if self.heap.len() < 2 * self.live_faces + 4096 {
             return;
         }
-        let (alive, changed_at) = (&self.vertex_alive, &self.changed_at);
-        self.heap.retain(|c| {
-            let (a, b) = (c.first as usize, c.second as usize);
-            alive[a] && alive[b] && changed_at[a] <= c.pushed_at && changed_at[b] <= c.pushed_at
-        });
+        let changed_at = &self.changed_at;
+        self.heap.retain(|c| changed_at[c.first as usize] <= c.pushed_at && changed_at[c.second as usize] <= c.pushed_at);
     }
 
     pub(super) fn finish(mut self) -> (Mesh, DecimateReport) {
