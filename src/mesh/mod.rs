@@ -6,6 +6,7 @@ pub mod atomic;
 pub mod decimate;
 pub mod fingerprint;
 pub mod io;
+pub mod normal_filter;
 pub mod normals;
 pub(crate) mod quadric;
 pub mod repair;

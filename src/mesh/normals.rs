@@ -44,6 +44,19 @@ pub struct OrientationReport {
     pub inconsistent_edges: usize,
 }
 
+/// Each vertex's share (a third) of the area of its faces: what its normal
+/// weighs, so that the dense and the sparse parts of a decimated mesh count by area.
+pub fn vertex_areas(mesh: &Mesh) -> Vec<f64> {
+    let mut areas = vec![0.0; mesh.vertex_count()];
+    for face in 0..mesh.face_count() {
+        let third_area = mesh.face_area(face) / 3.0;
+        for &v in &mesh.triangles[face] {
+            areas[v as usize] += third_area;
+        }
+    }
+    areas
+}
+
 /// Unit vertex normals from the faces. Vertices without faces keep the mesh's normal
 /// when it has one, else get the zero vector.
 pub fn compute_vertex_normals(mesh: &Mesh, weighting: NormalWeighting) -> Vec<Vector> {

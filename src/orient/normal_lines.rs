@@ -46,7 +46,7 @@ impl NormalLines {
             })?;
             (normals, vec![1.0; mesh.vertex_count()])
         } else {
-            (compute_vertex_normals(mesh, NormalWeighting::Area), vertex_areas(mesh))
+            (compute_vertex_normals(mesh, NormalWeighting::Area), crate::mesh::normals::vertex_areas(mesh))
         };
         let mut lines = NormalLines::default();
         for (i, (normal, weight)) in normals.iter().zip(&weights).enumerate() {
@@ -98,15 +98,3 @@ impl NormalLines {
     }
 }
 
-/// Each vertex's share (a third) of the area of its faces: the weight of its normal line,
-/// so that the dense and the sparse parts of a decimated mesh count by area.
-fn vertex_areas(mesh: &Mesh) -> Vec<f64> {
-    let mut areas = vec![0.0; mesh.vertex_count()];
-    for face in 0..mesh.face_count() {
-        let third_area = mesh.face_area(face) / 3.0;
-        for &v in &mesh.triangles[face] {
-            areas[v as usize] += third_area;
-        }
-    }
-    areas
-}
