@@ -147,6 +147,14 @@ pub const MAX_UNFLAGGED_SECTOR_MOVE_MM: f64 = 1.5;
 /// How each of [`Measurements::axis_doubts`] begins when it is repeated among the notes.
 pub const AXIS_DOUBT_NOTE: &str = "the axis is uncertain: ";
 
+/// The doubt on an axis that too few of the bootstrap's resamples could refine again to
+/// give it intervals (`refined` of `samples`): the refinement does not repeat on the
+/// fragment's own sections drawn again, so nothing says how far the axis may be off, and
+/// it is not given as sure.
+fn unrepeatable_doubt(refined: usize, samples: usize) -> String {
+    format!("only {refined} of {samples} resamples of its sections could be refined again: its precision is unknown")
+}
+
 /// A rim is measured when it is level over this share of the vertical sections (a rim
 /// preserved over a third of a sherd whose other end is a rising break line). Bases keep
 /// the stricter share of the refinement: a horizontal break low on a rim sherd is as
@@ -518,6 +526,9 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
                     "refined without a quarter of the preserved arc, the axis moves by {moved_mm:.1} mm of mean point distance (more than {MAX_UNFLAGGED_SECTOR_MOVE_MM})"
                 ));
             }
+            if measurements.axis_angle_interval_deg.is_none() {
+                measurements.axis_doubts.push(unrepeatable_doubt(replicates.len(), options.bootstrap.samples));
+            }
             measurements.axis_uncertain = !measurements.axis_doubts.is_empty();
             let doubts: Vec<String> = measurements.axis_doubts.iter().map(|d| format!("{AXIS_DOUBT_NOTE}{d}")).collect();
             measurements.notes.extend(doubts);
@@ -557,7 +568,13 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
             measurements.rim_diameter_interval_mm = interval(measurements.rim_radius_mm, Edge::Rim);
             measurements.base_diameter_interval_mm = interval(measurements.base_radius_mm, Edge::Base);
         }
-        Ok(_) => measurements.notes.push("no bootstrap: no intervals".into()),
+        Ok(_) if options.bootstrap.samples == 0 => measurements.notes.push("no bootstrap: no intervals".into()),
+        Ok(_) => {
+            let doubt = unrepeatable_doubt(0, options.bootstrap.samples);
+            measurements.notes.push(format!("{AXIS_DOUBT_NOTE}{doubt}"));
+            measurements.axis_doubts.push(doubt);
+            measurements.axis_uncertain = true;
+        }
         Err(error) => measurements.notes.push(format!("no intervals: {error}")),
     }
     measurements
