@@ -25,7 +25,7 @@ fn main() {
             let decimated = decimated_copy(&mesh, &options)?;
             let working = working_copy(&mesh, decimated.as_ref(), &options)?;
             let normals = sherd::mesh::normals::compute_vertex_normals(&working, sherd::mesh::normals::NormalWeighting::Area);
-            let passes = sherd::mesh::normal_filter::freed_of_roughness(&working, normals).passes;
+            let passes = sherd::mesh::normal_filter::freed_of_roughness(&working, normals, &sherd::mesh::normals::vertex_areas(&working)).passes;
             let lines = surface_of_revolution_lines(&working, &options)?;
             let samples = RevolutionSamples::from_lines(&lines, options.search.final_points, options.search.band_spacings, options.search.min_band_mm)
                 .ok_or("too few points on the surface of revolution")?;

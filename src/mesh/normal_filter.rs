@@ -9,7 +9,6 @@
 //! their neighbours' mean on the mesh itself ([`normal_scatter`]): a smooth scan keeps
 //! its normals as they are.
 
-use super::normals::vertex_areas;
 use super::topology::Topology;
 use super::{Mesh, Vector};
 use crate::statistics::upper_median;
@@ -18,21 +17,18 @@ use crate::statistics::upper_median;
 pub struct FilteredNormals {
     /// The vertex normals, filtered where they scattered more than [`TARGET_NORMAL_SCATTER`].
     pub normals: Vec<Vector>,
-    /// Their scatter before filtering ([`normal_scatter`]), radians.
-    pub scatter: f64,
     /// The passes of [`filter_normals`] run: 0 where the normals were kept as they were.
     pub passes: usize,
 }
 
 /// `normals` (one per vertex of `mesh`, unit or zero) filtered as far as their scatter
-/// calls for ([`passes_for_scatter`]), each vertex weighted by its area.
-pub fn freed_of_roughness(mesh: &Mesh, normals: Vec<Vector>) -> FilteredNormals {
+/// calls for ([`passes_for_scatter`]), each vertex weighted by `weights` (its area,
+/// [`crate::mesh::normals::vertex_areas`]).
+pub fn freed_of_roughness(mesh: &Mesh, normals: Vec<Vector>, weights: &[f64]) -> FilteredNormals {
     let neighbours = VertexNeighbours::of(mesh);
-    let weights = vertex_areas(mesh);
-    let scatter = normal_scatter(&normals, &weights, &neighbours).unwrap_or(0.0);
-    let passes = passes_for_scatter(scatter);
-    let normals = if passes > 0 { filter_normals(&normals, &weights, &neighbours, passes) } else { normals };
-    FilteredNormals { normals, scatter, passes }
+    let passes = passes_for_scatter(normal_scatter(&normals, weights, &neighbours).unwrap_or(0.0));
+    let normals = if passes > 0 { filter_normals(&normals, weights, &neighbours, passes) } else { normals };
+    FilteredNormals { normals, passes }
 }
 
 /// Each vertex's neighbours across an edge, as offsets into one list.
@@ -235,7 +231,7 @@ mod tests {
         assert!(before > 8.0 && after < before / 5.0, "median error {before:.1} deg before, {after:.1} after");
         let smooth = rough_cylinder(0.0, 5);
         let normals = compute_vertex_normals(&smooth, NormalWeighting::Area);
-        let kept = freed_of_roughness(&smooth, normals.clone());
+        let kept = freed_of_roughness(&smooth, normals.clone(), &crate::mesh::normals::vertex_areas(&smooth));
         assert_eq!((kept.passes, kept.normals), (0, normals), "a smooth scan's normals are kept as they are");
     }
 }

@@ -4,6 +4,7 @@
 use std::time::Instant;
 
 use super::line_complex::{self, CenteredLines};
+use super::normal_lines::NormalLines;
 use super::options::{check_options, OrientOptions};
 use super::report::{record_sense, CompetitorReach, OrientReport, Orientation};
 use super::sense::SenseInputs;
@@ -38,7 +39,7 @@ pub fn orient_automatic_with_decimated(mesh: &Mesh, decimated: Option<&Mesh>, op
     check_orientable(mesh, options)?;
     let working = working_copy(mesh, decimated, options)?;
     lap("working copy", &mut clock);
-    let all_lines = super::working::working_normal_lines(&working)?;
+    let all_lines = NormalLines::from_mesh_freed_of_roughness(&working)?;
     let mut report = OrientReport {
         method: "automatic".into(),
         input_vertex_count: mesh.vertex_count(),

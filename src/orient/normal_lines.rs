@@ -2,7 +2,8 @@
 //! 2018, section 2.2, the lines `n_i` of equation (1)). On a surface of revolution every
 //! such line meets the axis; every estimator of `orient` works on these lines.
 
-use crate::mesh::normals::{compute_vertex_normals, NormalWeighting};
+use crate::mesh::normal_filter::freed_of_roughness;
+use crate::mesh::normals::{compute_vertex_normals, vertex_areas, NormalWeighting};
 use crate::mesh::{Mesh, Point, Vector};
 use crate::{Error, Result};
 
@@ -36,6 +37,19 @@ impl NormalLines {
     /// normals are often noisier than the geometry), the stored normals with unit weights
     /// for a point cloud.
     pub fn from_mesh(mesh: &Mesh) -> Result<Self> {
+        Self::from_mesh_with(mesh, |normals, _| normals)
+    }
+
+    /// [`NormalLines::from_mesh`], a mesh's normals freed of the scan's roughness as far
+    /// as their scatter calls for ([`crate::mesh::normal_filter`]): the lines the
+    /// automatic orientation reads the axis off.
+    pub fn from_mesh_freed_of_roughness(mesh: &Mesh) -> Result<Self> {
+        Self::from_mesh_with(mesh, |normals, weights| freed_of_roughness(mesh, normals, weights).normals)
+    }
+
+    /// The lines of `mesh`, a mesh's face normals passed through `adjust` (given the
+    /// vertices' areas) first.
+    fn from_mesh_with(mesh: &Mesh, adjust: impl FnOnce(Vec<Vector>, &[f64]) -> Vec<Vector>) -> Result<Self> {
         mesh.validate()?;
         if mesh.positions.is_empty() {
             return Err(Error::DegenerateGeometry("the mesh has no vertices".into()));
@@ -46,7 +60,8 @@ impl NormalLines {
             })?;
             (normals, vec![1.0; mesh.vertex_count()])
         } else {
-            (compute_vertex_normals(mesh, NormalWeighting::Area), crate::mesh::normals::vertex_areas(mesh))
+            let weights = vertex_areas(mesh);
+            (adjust(compute_vertex_normals(mesh, NormalWeighting::Area), &weights), weights)
         };
         let mut lines = NormalLines::default();
         for (i, (normal, weight)) in normals.iter().zip(&weights).enumerate() {

@@ -6,7 +6,7 @@ use super::normal_lines::NormalLines;
 use super::opposite_normals;
 use super::options::{check_options, OrientOptions};
 use super::report::OrientReport;
-use crate::mesh::{normal_filter, Mesh};
+use crate::mesh::Mesh;
 use crate::{Error, Result};
 
 /// The decimated copy of `mesh` the automatic pre-orientation works on, before it is
@@ -75,27 +75,8 @@ pub fn working_copy(mesh: &Mesh, decimated: Option<&Mesh>, options: &OrientOptio
 /// The normal lines of `working` (a [`working_copy`]) on the surface of revolution, as the
 /// opposite-normal test leaves them (all of them where it cannot run or keeps too few).
 pub fn surface_of_revolution_lines(working: &Mesh, options: &OrientOptions) -> Result<NormalLines> {
-    let all_lines = working_normal_lines(working)?;
+    let all_lines = NormalLines::from_mesh_freed_of_roughness(working)?;
     Ok(select_surface_of_revolution(working, &all_lines, options, &mut OrientReport::default()))
-}
-
-/// The normal lines of `working`, their normals freed of the scan's roughness as far as
-/// their scatter calls for ([`crate::mesh::normal_filter`]).
-pub fn working_normal_lines(working: &Mesh) -> Result<NormalLines> {
-    let mut lines = NormalLines::from_mesh(working)?;
-    if working.is_point_cloud() {
-        return Ok(lines);
-    }
-    let normals = crate::mesh::normals::compute_vertex_normals(working, crate::mesh::normals::NormalWeighting::Area);
-    let filtered = normal_filter::freed_of_roughness(working, normals);
-    if filtered.passes > 0 {
-        for (direction, &v) in lines.directions.iter_mut().zip(&lines.vertex_indices) {
-            if filtered.normals[v].norm_squared() > 0.5 {
-                *direction = filtered.normals[v];
-            }
-        }
-    }
-    Ok(lines)
 }
 
 /// The lines on the surface of revolution: the opposite-normal test on meshes, all lines
