@@ -115,3 +115,31 @@ fn synth_rejects_bad_arguments_clearly() {
     assert!(stderr.contains("--faces 10"), "{stderr}");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "nothing written on a bad argument");
 }
+
+/// `--relief-mm` moves the vessel's surface and is recorded in the truth; without it the
+/// files are those of before (no relief, no draw from the vessel's random stream); a
+/// negative or non-finite relief is refused with the flag's name.
+#[test]
+fn synth_relief_moves_the_surface_and_is_recorded() {
+    let dir = tempfile::tempdir().unwrap();
+    let make = |name: &str, extra: &[&str]| {
+        let out = dir.path().join(name);
+        Command::cargo_bin("sherd").unwrap().args(["synth", "--vessel", "--fragments", "4", "--cell-mm", "3", "--seed", "9", "-o"]).arg(&out).args(extra).assert().success();
+        out
+    };
+    let plain = make("plain", &[]);
+    let relief = make("relief", &["--relief-mm", "0.3", "--relief-wavelength-mm", "8"]);
+    let name = "vessel_9_fragment_000";
+    let truth = read_truth(&relief.join(format!("{name}.truth.json"))).unwrap();
+    assert_eq!((truth.relief.amplitude_mm, truth.relief.wavelength_mm), (0.3, 8.0));
+    assert_eq!(read_truth(&plain.join(format!("{name}.truth.json"))).unwrap().relief.amplitude_mm, 0.0);
+    let (a, b) = (read_mesh(&plain.join(format!("{name}.ply"))).unwrap(), read_mesh(&relief.join(format!("{name}.ply"))).unwrap());
+    assert_eq!(a.triangles, b.triangles, "the relief moves vertices, it does not remesh");
+    let rms = (a.positions.iter().zip(&b.positions).map(|(p, q)| (p - q).norm_squared()).sum::<f64>() / a.positions.len() as f64).sqrt();
+    assert!((0.15..0.45).contains(&rms), "rms move {rms} mm for a 0.3 mm relief");
+    for bad in ["--relief-mm=-0.1", "--relief-mm=NaN"] {
+        let refused = Command::cargo_bin("sherd").unwrap().args(["synth", bad, "-o"]).arg(dir.path().join("bad")).output().unwrap();
+        assert!(!refused.status.success());
+        assert!(String::from_utf8_lossy(&refused.stderr).contains("--relief-mm"), "{}", String::from_utf8_lossy(&refused.stderr));
+    }
+}

@@ -61,6 +61,7 @@ fn inferred_hard_case(profile: &VesselProfile, shell: &Shell, part: SherdPart) -
 /// What happens to a shell after it is built: colour, noise, motion.
 pub(super) struct Surface {
     pub(super) noise_mm: f64,
+    pub(super) relief: super::Relief,
     pub(super) noise_seed: u64,
     /// `None`: stay in the vessel frame.
     pub(super) motion_seed: Option<u64>,
@@ -77,6 +78,7 @@ pub(super) fn finish(seed: u64, shell: Shell, profile: &VesselProfile, deformati
     if let Some(colour) = &surface.colour {
         mesh.colors = Some(mesh.positions.par_iter().zip(&vertex_kinds).map(|(p, kind)| colour.at(p, *kind)).collect());
     }
+    super::relief::add_relief(&mut mesh, &surface.relief, seed);
     motion::add_noise(&mut mesh.positions, surface.noise_mm, surface.noise_seed);
     let isometry = match surface.motion_seed {
         Some(motion_seed) => {
@@ -109,6 +111,7 @@ pub(super) fn finish(seed: u64, shell: Shell, profile: &VesselProfile, deformati
         part,
         hard_case,
         noise_mm: surface.noise_mm,
+        relief: surface.relief,
         fragment_index: surface.fragment_index,
         deformation_bound_mm: deformation.bound_mm(profile.max_radius_mm()),
         vessel: vessel_truth(profile, deformation),

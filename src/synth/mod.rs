@@ -16,6 +16,7 @@ mod finish;
 pub(crate) mod fracture;
 pub(crate) mod motion;
 mod plan;
+pub mod relief;
 pub mod shape;
 pub(crate) mod shell;
 pub mod truth;
@@ -28,6 +29,7 @@ use rayon::prelude::*;
 pub use deform::Deformation;
 pub use shape::{BaseForm, ProfileForms, RimForm, VesselProfile, VesselShape};
 pub use truth::{GroundTruth, HardCase, RigidMotion, SherdPart, SurfaceKind, VesselTruth};
+pub use relief::Relief;
 pub use write::{read_truth, write_sherd};
 
 use crate::mesh::Mesh;
@@ -44,6 +46,8 @@ pub struct SherdOptions {
     pub target_faces: usize,
     /// Standard deviation of the Gaussian noise added to every coordinate, mm.
     pub noise_mm: f64,
+    /// Slow undulation of the surface along its normals, neighbours moving together.
+    pub relief: Relief,
     /// The part wanted; `None` draws rim, body, base or complete profile at random.
     pub part: Option<SherdPart>,
     /// Range of the circumference angle the fragment should span, degrees (clamped to
@@ -73,6 +77,7 @@ impl Default for SherdOptions {
         SherdOptions {
             target_faces: 20_000,
             noise_mm: 0.02,
+            relief: Relief::default(),
             part: None,
             sector_deg: [15.0, 60.0],
             shape: None,
@@ -99,7 +104,7 @@ impl SherdOptions {
 
     /// An ideal fragment: no deformation, no noise (for tests of exact recovery).
     pub fn ideal(self) -> Self {
-        SherdOptions { noise_mm: 0.0, deformation_scale: 0.0, ..self }
+        SherdOptions { noise_mm: 0.0, relief: Relief::default(), deformation_scale: 0.0, ..self }
     }
 }
 
@@ -127,6 +132,8 @@ pub struct VesselOptions {
     pub cell_size_mm: f64,
     /// Standard deviation of the Gaussian noise added to every coordinate, mm.
     pub noise_mm: f64,
+    /// Slow undulation of the surface along its normals, neighbours moving together.
+    pub relief: Relief,
     /// As [`SherdOptions::deformation_scale`].
     pub deformation_scale: f64,
     /// How far the break lines wander from straight, mm.
@@ -147,6 +154,7 @@ impl Default for VesselOptions {
             fragment_count: 24,
             cell_size_mm: 2.0,
             noise_mm: 0.02,
+            relief: Relief::default(),
             deformation_scale: 1.0,
             roughness_mm: 1.5,
             random_motion: false,
@@ -212,6 +220,7 @@ pub fn synthetic_sherd(seed: u64, options: &SherdOptions) -> SynthSherd {
             let part = classify(&profile, &shell);
             let surface = Surface {
                 noise_mm: options.noise_mm,
+                relief: options.relief,
                 noise_seed: rng.random(),
                 motion_seed: options.random_motion.then(|| rng.random()),
                 colour: options.colours.then(|| ClayColour::random(&mut rng)),
@@ -271,6 +280,7 @@ pub fn generate_vessel(seed: u64, options: &VesselOptions) -> SynthVessel {
             let (noise_seed, motion_seed) = fragment_seeds[k];
             let surface = Surface {
                 noise_mm: options.noise_mm,
+                relief: options.relief,
                 noise_seed,
                 motion_seed: options.random_motion.then_some(motion_seed),
                 colour: colour.clone(),

@@ -188,6 +188,9 @@ pub struct GroundTruth {
     pub hard_case: Option<HardCase>,
     /// Standard deviation of the Gaussian noise on every coordinate, mm.
     pub noise_mm: f64,
+    /// The surface's relief (none in truth files written without it).
+    #[serde(default)]
+    pub relief: super::Relief,
     /// Upper bound of how far the deformation moved any point of the fragment, mm.
     pub deformation_bound_mm: f64,
     /// The vessel.

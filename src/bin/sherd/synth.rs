@@ -59,6 +59,13 @@ pub struct SynthArgs {
     /// Standard deviation of the noise on every coordinate, mm.
     #[arg(long, default_value_t = 0.02)]
     pub noise_mm: f64,
+    /// Standard deviation of the surface's relief, mm: a slow undulation along the
+    /// normals, neighbouring vertices moving together (hand finishing), 0 for none.
+    #[arg(long, default_value_t = 0.0)]
+    pub relief_mm: f64,
+    /// Typical distance between the relief's crests, mm.
+    #[arg(long, default_value_t = 6.0)]
+    pub relief_wavelength_mm: f64,
     /// Circumference angle range of the sherds, degrees, as LOW,HIGH.
     #[arg(long, value_delimiter = ',', num_args = 2, default_values_t = [15.0, 60.0])]
     pub sector_deg: Vec<f64>,
@@ -104,6 +111,10 @@ impl SynthArgs {
     }
 
     /// True for whole vessels broken into fragments, false for one sherd per seed.
+    fn relief(&self) -> sherd::synth::Relief {
+        sherd::synth::Relief { amplitude_mm: self.relief_mm, wavelength_mm: self.relief_wavelength_mm }
+    }
+
     fn breaks_vessels(&self) -> bool {
         self.part.is_none() && self.hard_case.is_none() && self.faces.is_none()
     }
@@ -135,6 +146,7 @@ pub fn run(arguments: &SynthArgs) -> Result<()> {
                     fragment_count: arguments.fragment_count(seed),
                     cell_size_mm: arguments.cell_mm,
                     noise_mm: arguments.noise_mm,
+                    relief: arguments.relief(),
                     deformation_scale: if arguments.ideal { 0.0 } else { arguments.deformation },
                     random_motion: !arguments.no_motion,
                     forms: arguments.forms(),
@@ -145,6 +157,7 @@ pub fn run(arguments: &SynthArgs) -> Result<()> {
                 let options = SherdOptions {
                     target_faces: arguments.faces.unwrap_or(DEFAULT_SHERD_FACES),
                     noise_mm: arguments.noise_mm,
+                    relief: arguments.relief(),
                     part: arguments.part,
                     sector_deg: [arguments.sector_deg[0], arguments.sector_deg[1]],
                     shape: arguments.shape,
@@ -180,6 +193,12 @@ fn check(arguments: &SynthArgs) -> Result<()> {
     }
     if !(arguments.noise_mm >= 0.0 && arguments.noise_mm.is_finite()) {
         return invalid(format!("--noise-mm {} must be a finite number >= 0", arguments.noise_mm));
+    }
+    if !(arguments.relief_mm >= 0.0 && arguments.relief_mm.is_finite()) {
+        return invalid(format!("--relief-mm {} must be a finite number >= 0", arguments.relief_mm));
+    }
+    if !(arguments.relief_wavelength_mm > 0.0 && arguments.relief_wavelength_mm.is_finite()) {
+        return invalid(format!("--relief-wavelength-mm {} must be a finite number > 0", arguments.relief_wavelength_mm));
     }
     if !(arguments.deformation >= 0.0 && arguments.deformation <= 10.0) {
         return invalid(format!("--deformation {} must be a number from 0 to 10", arguments.deformation));
