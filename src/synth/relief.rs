@@ -1,6 +1,6 @@
 //! Surface relief: the slow undulation of a hand-finished pot's surface (finger marks,
 //! uneven smoothing, slip runs) that a scanner records and no axis explains. Unlike the
-//! noise on every coordinate ([`super::motion::add_noise`]), neighbouring vertices move
+//! noise on every coordinate (the options' `noise_mm`), neighbouring vertices move
 //! together, over about a wavelength, so that smoothing a scan does not take it away.
 //!
 //! The field is a sum of plane waves of random directions, wavelengths and phases (a
