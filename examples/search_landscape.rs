@@ -51,7 +51,8 @@ fn main() {
     // Fragments whose best valley is wrong: the true valley lower (missed) or higher.
     let (mut missed, mut outscored) = (0usize, 0usize);
     // Experiments: SHERD_LOSS_SCALE_BANDS, SHERD_MIN_BAND_MM, SHERD_BAND_SPACINGS,
-    // SHERD_COARSE_DIRECTIONS and SHERD_VALLEYS override the search's settings.
+    // SHERD_COARSE_DIRECTIONS, SHERD_VALLEYS and SHERD_FINAL_VALLEYS override the search's
+    // settings.
     let from_env = |name: &str| std::env::var(name).ok().and_then(|v| v.parse::<f64>().ok());
     let mut search_options = SearchOptions::default();
     if let Some(value) = from_env("SHERD_LOSS_SCALE_BANDS") {
@@ -62,7 +63,9 @@ fn main() {
     }
     if let Some(value) = from_env("SHERD_VALLEYS") {
         search_options.valleys = value as usize;
-        search_options.final_valleys = (value as usize).min(search_options.final_valleys.max(value as usize - 2));
+    }
+    if let Some(value) = from_env("SHERD_FINAL_VALLEYS") {
+        search_options.final_valleys = value as usize;
     }
     if let Some(value) = from_env("SHERD_MIN_BAND_MM") {
         search_options.min_band_mm = value;

@@ -155,6 +155,13 @@ fn unrepeatable_doubt(refined: usize, samples: usize) -> String {
     format!("only {refined} of {samples} resamples of its sections could be refined again: its precision is unknown")
 }
 
+/// Marks the axis uncertain when it has doubts, and repeats each among the notes.
+fn publish_axis_doubts(measurements: &mut Measurements) {
+    measurements.axis_uncertain = !measurements.axis_doubts.is_empty();
+    let doubts: Vec<String> = measurements.axis_doubts.iter().map(|d| format!("{AXIS_DOUBT_NOTE}{d}")).collect();
+    measurements.notes.extend(doubts);
+}
+
 /// A rim is measured when it is level over this share of the vertical sections (a rim
 /// preserved over a third of a sherd whose other end is a rising break line). Bases keep
 /// the stricter share of the refinement: a horizontal break low on a rim sherd is as
@@ -529,9 +536,7 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
             if measurements.axis_angle_interval_deg.is_none() {
                 measurements.axis_doubts.push(unrepeatable_doubt(replicates.len(), options.bootstrap.samples));
             }
-            measurements.axis_uncertain = !measurements.axis_doubts.is_empty();
-            let doubts: Vec<String> = measurements.axis_doubts.iter().map(|d| format!("{AXIS_DOUBT_NOTE}{d}")).collect();
-            measurements.notes.extend(doubts);
+            publish_axis_doubts(&mut measurements);
             // The rim's and the base's radii under each resampled or jackknifed axis. Each
             // axis's vertices are dropped once its radii are taken: kept all at once they
             // were 24 copies of the scan (140 MB for 500k faces).
@@ -570,10 +575,8 @@ pub fn measure_with_bootstrap_mesh(mesh: &Mesh, bootstrap_mesh: &Mesh, axis: &Ax
         }
         Ok(_) if options.bootstrap.samples == 0 => measurements.notes.push("no bootstrap: no intervals".into()),
         Ok(_) => {
-            let doubt = unrepeatable_doubt(0, options.bootstrap.samples);
-            measurements.notes.push(format!("{AXIS_DOUBT_NOTE}{doubt}"));
-            measurements.axis_doubts.push(doubt);
-            measurements.axis_uncertain = true;
+            measurements.axis_doubts.push(unrepeatable_doubt(0, options.bootstrap.samples));
+            publish_axis_doubts(&mut measurements);
         }
         Err(error) => measurements.notes.push(format!("no intervals: {error}")),
     }
