@@ -4,14 +4,16 @@
 use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use sherd::mesh::{Mesh, Point, Vector};
 use sherd::orient::{segment_surfaces, Axis};
-use sherd::profile::rills::{trace_rills, RillOptions};
+use sherd::profile::rills::{trace_rills, trace_rills_under, RillOptions};
+use sherd::synth::{generate_vessel, VesselOptions};
 
-/// Radius of the outer skin at height `z`: a wall flaring at `flare` mm/mm with grooves
-/// 0.3 mm deep every 6 mm (a cosine bump 2 mm wide) when `grooved`.
-fn outer_radius(z: f64, flare: f64, grooved: bool) -> f64 {
+/// Radius of the outer skin at height `z`: a wall flaring at `flare` mm/mm and bending by
+/// `bend` (its radius's second derivative, per mm), with grooves 0.3 mm deep every 6 mm (a
+/// cosine bump 2 mm wide) when `grooved`.
+fn outer_radius(z: f64, flare: f64, bend: f64, grooved: bool) -> f64 {
     let phase = z.rem_euclid(6.0) - 3.0;
     let groove = if grooved && phase.abs() < 1.0 { 0.15 * (1.0 + (std::f64::consts::PI * phase).cos()) } else { 0.0 };
-    60.0 + flare * z - groove
+    60.0 + flare * z + 0.5 * bend * z * z - groove
 }
 
 /// A 60-degree wall sherd 30 mm high.
@@ -22,13 +24,16 @@ struct Wall {
     noise_mm: f64,
     /// Distance between neighbouring points, mm.
     spacing_mm: f64,
-    /// How much the radius grows per mm of height.
+    /// How much the radius grows per mm of height at mid-height.
     flare: f64,
+    /// How much the flare grows per mm of height: the profile's bend (positive: the outer
+    /// skin bends into the wall, as at a neck).
+    bend: f64,
 }
 
 impl Wall {
     fn grooved(noise_mm: f64) -> Wall {
-        Wall { grooved: true, noise_mm, spacing_mm: 0.3, flare: 0.3 }
+        Wall { grooved: true, noise_mm, spacing_mm: 0.3, flare: 0.3, bend: 0.0 }
     }
 }
 
@@ -52,8 +57,9 @@ fn wall_sherd(wall: Wall) -> (Mesh, Axis) {
         for column in 0..=columns {
             let angle = (-30.0 + 60.0 * column as f64 / columns as f64).to_radians();
             let (c, s) = (angle.cos(), angle.sin());
-            for (radius, outward) in [(outer_radius(z, wall.flare, wall.grooved), 1.0), (outer_radius(z, wall.flare, false) - 5.0, -1.0)] {
-                let normal = Vector::new(c, s, -wall.flare).normalize() * outward;
+            let slope = wall.flare + wall.bend * z;
+            for (radius, outward) in [(outer_radius(z, wall.flare, wall.bend, wall.grooved), 1.0), (outer_radius(z, wall.flare, wall.bend, false) - 5.0, -1.0)] {
+                let normal = Vector::new(c, s, -slope).normalize() * outward;
                 let point = Point::new((radius + noise()) * c, (radius + noise()) * s, z + noise());
                 positions.push(pose * point);
                 normals.push(pose * normal);
@@ -95,7 +101,7 @@ fn a_smooth_wall_has_no_rills() {
     // much as the slope makes a shallow groove of); coarse and rough, as a hand-held
     // scanner gives.
     for (noise_mm, spacing_mm, flare) in [(0.03, 0.3, 0.3), (0.02, 0.8, 0.8), (0.25, 1.2, 0.3)] {
-        let (mesh, truth) = wall_sherd(Wall { grooved: false, noise_mm, spacing_mm, flare });
+        let (mesh, truth) = wall_sherd(Wall { grooved: false, noise_mm, spacing_mm, flare, bend: 0.0 });
         let skins = segment_surfaces(&mesh, &truth).unwrap();
         let rills = trace_rills(&mesh, &truth, &skins, &RillOptions::default());
         assert!(rills.is_empty(), "noise {noise_mm} mm, spacing {spacing_mm} mm, flare {flare}: {rills:?}");
@@ -103,8 +109,34 @@ fn a_smooth_wall_has_no_rills() {
 }
 
 #[test]
+fn grooves_on_a_bending_wall_are_traced() {
+    // A belly's or a neck's steady bend (a profile radius of 45 mm either way) leaves the
+    // wall's smoothing a shallow dip or bump all along, which the grooves stand out of.
+    for bend in [1.0 / 45.0, -1.0 / 45.0] {
+        let (mesh, truth) = wall_sherd(Wall { bend, ..Wall::grooved(0.02) });
+        let skins = segment_surfaces(&mesh, &truth).unwrap();
+        let rills = trace_rills(&mesh, &truth, &skins, &RillOptions::default());
+        assert!(rills.len() >= 3, "bend {bend:.3}: {} rills: {rills:?}", rills.len());
+        assert!(rills.iter().all(|rill| rill.slope_deg.abs() < 0.3), "bend {bend:.3}: {rills:?}");
+    }
+}
+
+/// The tuning generator cuts no rills: under the true axis, none is traced on its vessels'
+/// fragments, whose profiles bend at necks and lips and turn from floor to wall.
+#[test]
+fn the_generators_vessels_have_no_rills() {
+    for seed in [100, 101] {
+        let vessel = generate_vessel(seed, &VesselOptions { cell_size_mm: 0.8, random_motion: true, ..VesselOptions::default() });
+        for (index, fragment) in vessel.fragments.iter().enumerate() {
+            let rills = trace_rills_under(&fragment.mesh, &fragment.truth.axis, &RillOptions::default());
+            assert!(rills.is_empty(), "vessel {seed} fragment {index} ({:?}): {rills:?}", fragment.truth.part);
+        }
+    }
+}
+
+#[test]
 fn grooves_stand_out_of_a_rough_coarse_scan() {
-    let (mesh, truth) = wall_sherd(Wall { grooved: true, noise_mm: 0.1, spacing_mm: 0.5, flare: 0.8 });
+    let (mesh, truth) = wall_sherd(Wall { grooved: true, noise_mm: 0.1, spacing_mm: 0.5, flare: 0.8, bend: 0.0 });
     let skins = segment_surfaces(&mesh, &truth).unwrap();
     let rills = trace_rills(&mesh, &truth, &skins, &RillOptions::default());
     assert!(rills.len() >= 3, "{} rills: {rills:?}", rills.len());

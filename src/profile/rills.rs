@@ -5,17 +5,20 @@
 //! check of that axis: a turn of the axis about the sherd's radial direction slants every
 //! rill by the same angle.
 //!
-//! The tracer works on the unrolled skin. Per vertical strip of the arc, the radius as a
-//! function of height is smoothed at the scale of a groove and the wall's own profile (a
-//! much wider smoothing) taken away; grooves are the minima of what is left, into the wall,
-//! deeper than their surroundings by [`RillOptions::min_depth_mm`]. Minima of neighbouring
-//! strips at about the same height are linked into rills, and a straight line through each
-//! rill's heights against the arc gives its slope. Any other groove of the surface of
-//! revolution (a lip's groove, the concave corner of a carination, an incised line) is
-//! horizontal on the vessel too, and is traced and counted alike.
+//! The tracer works on the unrolled skin of the wall (the floor and a flat lip, whose
+//! normals lie along the axis, carry no rills). Per vertical strip of the arc, the radius
+//! as a function of height is smoothed at the scale of a groove and the wall's own profile
+//! (a much wider smoothing) taken away; grooves are the minima of what is left, into the
+//! wall, deeper than their surroundings by [`RillOptions::min_depth_mm`] and than the dip
+//! the wall's own bend leaves there (a neck or a lip's shoulder is not a rill). Minima of
+//! neighbouring strips at about the same height are linked into rills, and a straight line
+//! through each rill's heights against the arc gives its slope. Any other groove cut into
+//! the surface of revolution (a lip's groove, an incised line) is horizontal on the vessel
+//! too, and is traced and counted alike.
 
 use serde::{Deserialize, Serialize};
 
+use crate::mesh::normals::{compute_vertex_normals, NormalWeighting};
 use crate::mesh::{Mesh, Point};
 use crate::orient::{Axis, Skin};
 use crate::statistics::least_squares_line;
@@ -133,17 +136,27 @@ pub fn trace_rills_under(mesh: &Mesh, axis: &Axis, options: &RillOptions) -> Vec
 }
 
 /// The rills of both skins under `axis` (`skins` from [`crate::orient::segment_surfaces`]),
-/// longest first. Empty on a smooth wall: the depth test keeps scan noise out.
+/// longest first. Empty on a smooth wall: the depth test keeps scan noise out, and the
+/// bend test the profile's own bends.
 pub fn trace_rills(mesh: &Mesh, axis: &Axis, skins: &[Skin], options: &RillOptions) -> Vec<Rill> {
     let Some(reference) = mesh.centroid() else { return Vec::new() };
     let frame = axis.to_oriented_frame(&reference);
+    let normals = if mesh.is_point_cloud() { mesh.normals.clone() } else { Some(compute_vertex_normals(mesh, NormalWeighting::Area)) };
+    // Rills run round the wall. A floor or a flat lip, whose normals lie closer to the axis
+    // than across it, carries none, and its turn into the wall is a corner of the profile.
+    let on_wall = |i: usize| {
+        normals.as_ref().and_then(|normals| normals.get(i)).is_none_or(|n| {
+            let axial = n.dot(&axis.direction).abs();
+            axial * axial <= 0.5 * n.norm_squared()
+        })
+    };
     let mut rills = Vec::new();
     for skin in [Skin::Inner, Skin::Outer] {
         let vertices: Vec<(usize, f64, f64, f64)> = mesh
             .positions
             .iter()
             .enumerate()
-            .filter(|(i, _)| skins.get(*i) == Some(&skin))
+            .filter(|(i, _)| skins.get(*i) == Some(&skin) && on_wall(*i))
             .map(|(i, p)| {
                 let (radius, height, angle) = Axis::cylindrical(&frame, p);
                 (i, radius, height, angle)
@@ -264,6 +277,12 @@ fn strip_grooves(
         if depth_mm < MIN_DEPTH_T * noise_mm / (averaged.max(1) as f64).sqrt() {
             continue;
         }
+        // Where the profile bends into the wall (a neck, a lip's shoulder), taking the
+        // wall's smoothing off leaves a dip as deep as a rill: a groove no deeper than
+        // that is the bend.
+        if depth_mm <= bend_dip_mm(&wall, b, bin, options.wall_smoothing_mm) {
+            continue;
+        }
         // The groove's bottom in the scan: the vertices of the strip within a bin of it.
         let bottom: Vec<usize> = members.iter().copied().filter(|&k| (vertices[k].2 - height_mm).abs() <= bin).collect();
         if bottom.is_empty() {
@@ -282,6 +301,19 @@ fn strip_grooves(
 /// minima of a rough surface's relief, linked across strips, would otherwise read as
 /// rills.
 const MIN_DEPTH_T: f64 = 4.0;
+
+/// The dip that taking the wall's smoothing (a Gaussian of `smoothing_mm`) off the wall
+/// leaves at bin `b` where the wall bends into itself, mm: a smooth curve less its
+/// Gaussian smoothing is `-smoothing^2 / 2` times its second derivative (Taylor), read here
+/// off the smoothed `wall` (into the wall positive) over 1 mm either side. 0 where the
+/// wall bends away: that leaves a ridge, not a groove.
+fn bend_dip_mm(wall: &[f64], b: usize, bin_mm: f64, smoothing_mm: f64) -> f64 {
+    let reach = (1.0 / bin_mm).round().max(1.0) as usize;
+    let below = wall[b.saturating_sub(reach)];
+    let above = wall[(b + reach).min(wall.len() - 1)];
+    let second_derivative = (above - 2.0 * wall[b] + below) / (reach as f64 * bin_mm).powi(2);
+    0.5 * smoothing_mm.powi(2) * second_derivative.max(0.0)
+}
 
 /// The mean value per height bin of `(bin, value)` pairs, and the bins holding at least 3
 /// of them; `None` when fewer than 10 do. Bins with fewer than 3 are filled by linear
