@@ -5,15 +5,20 @@ use nalgebra::{Isometry3, Translation3, UnitQuaternion};
 use sherd::mesh::{Mesh, Point, Vector};
 use sherd::orient::{segment_surfaces, Axis};
 use sherd::profile::rills::{trace_rills, trace_rills_under, RillOptions};
-use sherd::synth::{generate_vessel, VesselOptions};
+use sherd::synth::{generate_vessel, synthetic_sherd, SherdOptions, SherdPart, VesselOptions};
 
-/// Radius of the outer skin at height `z`: a wall flaring at `flare` mm/mm and bending by
-/// `bend` (its radius's second derivative, per mm), with grooves 0.3 mm deep every 6 mm (a
-/// cosine bump 2 mm wide) when `grooved`.
-fn outer_radius(z: f64, flare: f64, bend: f64, grooved: bool) -> f64 {
+/// The default seed of `sherd demo`.
+const SEED_OF_THE_DEMO: u64 = 6;
+
+/// Radius of the outer skin at height `z` of `wall`: flaring at `flare` mm/mm and bending
+/// by `bend` (its radius's second derivative, per mm), with grooves 0.3 mm deep every 6 mm
+/// (a cosine bump 2 mm wide) when `grooved`, and a corrugation `corrugation_mm` deep from
+/// crest to trough every 5 mm.
+fn outer_radius(z: f64, wall: &Wall, grooved: bool) -> f64 {
     let phase = z.rem_euclid(6.0) - 3.0;
     let groove = if grooved && phase.abs() < 1.0 { 0.15 * (1.0 + (std::f64::consts::PI * phase).cos()) } else { 0.0 };
-    60.0 + flare * z + 0.5 * bend * z * z - groove
+    let corrugation = 0.5 * wall.corrugation_mm * (std::f64::consts::TAU * z / 5.0).cos();
+    60.0 + wall.flare * z + 0.5 * wall.bend * z * z - groove + corrugation
 }
 
 /// A 60-degree wall sherd 30 mm high.
@@ -29,11 +34,14 @@ struct Wall {
     /// How much the flare grows per mm of height: the profile's bend (positive: the outer
     /// skin bends into the wall, as at a neck).
     bend: f64,
+    /// Depth of a corrugation of the outer skin every 5 mm (rills thrown close together),
+    /// crest to trough, mm.
+    corrugation_mm: f64,
 }
 
 impl Wall {
     fn grooved(noise_mm: f64) -> Wall {
-        Wall { grooved: true, noise_mm, spacing_mm: 0.3, flare: 0.3, bend: 0.0 }
+        Wall { grooved: true, noise_mm, spacing_mm: 0.3, flare: 0.3, bend: 0.0, corrugation_mm: 0.0 }
     }
 }
 
@@ -58,7 +66,8 @@ fn wall_sherd(wall: Wall) -> (Mesh, Axis) {
             let angle = (-30.0 + 60.0 * column as f64 / columns as f64).to_radians();
             let (c, s) = (angle.cos(), angle.sin());
             let slope = wall.flare + wall.bend * z;
-            for (radius, outward) in [(outer_radius(z, wall.flare, wall.bend, wall.grooved), 1.0), (outer_radius(z, wall.flare, wall.bend, false) - 5.0, -1.0)] {
+            let smooth = Wall { corrugation_mm: 0.0, ..wall };
+            for (radius, outward) in [(outer_radius(z, &wall, wall.grooved), 1.0), (outer_radius(z, &smooth, false) - 5.0, -1.0)] {
                 let normal = Vector::new(c, s, -slope).normalize() * outward;
                 let point = Point::new((radius + noise()) * c, (radius + noise()) * s, z + noise());
                 positions.push(pose * point);
@@ -101,7 +110,7 @@ fn a_smooth_wall_has_no_rills() {
     // much as the slope makes a shallow groove of); coarse and rough, as a hand-held
     // scanner gives.
     for (noise_mm, spacing_mm, flare) in [(0.03, 0.3, 0.3), (0.02, 0.8, 0.8), (0.25, 1.2, 0.3)] {
-        let (mesh, truth) = wall_sherd(Wall { grooved: false, noise_mm, spacing_mm, flare, bend: 0.0 });
+        let (mesh, truth) = wall_sherd(Wall { grooved: false, noise_mm, spacing_mm, flare, bend: 0.0, corrugation_mm: 0.0 });
         let skins = segment_surfaces(&mesh, &truth).unwrap();
         let rills = trace_rills(&mesh, &truth, &skins, &RillOptions::default());
         assert!(rills.is_empty(), "noise {noise_mm} mm, spacing {spacing_mm} mm, flare {flare}: {rills:?}");
@@ -121,6 +130,27 @@ fn grooves_on_a_bending_wall_are_traced() {
     }
 }
 
+#[test]
+fn a_deep_close_corrugation_is_traced() {
+    // Rills 1 mm deep (the deepest) and 5 mm apart: their flanks turn the wall by about
+    // 20 degrees across each trough, short of a profile's corner.
+    let (mesh, truth) = wall_sherd(Wall { grooved: false, corrugation_mm: 1.0, ..Wall::grooved(0.02) });
+    let skins = segment_surfaces(&mesh, &truth).unwrap();
+    let rills = trace_rills(&mesh, &truth, &skins, &RillOptions::default());
+    assert!(rills.len() >= 4, "{} rills: {rills:?}", rills.len());
+    assert!(rills.iter().all(|rill| rill.slope_deg.abs() < 0.3), "{rills:?}");
+}
+
+/// The demo's sherd (`sherd demo`, its default seed) has a smooth wall whose inner lip
+/// shoulder bends sharply: no rill is traced on it.
+#[test]
+fn the_demo_sherd_has_no_rills() {
+    let options = SherdOptions { target_faces: 200_000, part: Some(SherdPart::Rim), noise_mm: 0.01, ..SherdOptions::default() };
+    let sherd = synthetic_sherd(SEED_OF_THE_DEMO, &options);
+    let rills = trace_rills_under(&sherd.mesh, &sherd.truth.axis, &RillOptions::default());
+    assert!(rills.is_empty(), "{rills:?}");
+}
+
 /// The tuning generator cuts no rills: under the true axis, none is traced on its vessels'
 /// fragments, whose profiles bend at necks and lips and turn from floor to wall.
 #[test]
@@ -136,7 +166,7 @@ fn the_generators_vessels_have_no_rills() {
 
 #[test]
 fn grooves_stand_out_of_a_rough_coarse_scan() {
-    let (mesh, truth) = wall_sherd(Wall { grooved: true, noise_mm: 0.1, spacing_mm: 0.5, flare: 0.8, bend: 0.0 });
+    let (mesh, truth) = wall_sherd(Wall { grooved: true, noise_mm: 0.1, spacing_mm: 0.5, flare: 0.8, bend: 0.0, corrugation_mm: 0.0 });
     let skins = segment_surfaces(&mesh, &truth).unwrap();
     let rills = trace_rills(&mesh, &truth, &skins, &RillOptions::default());
     assert!(rills.len() >= 3, "{} rills: {rills:?}", rills.len());

@@ -10,7 +10,8 @@
 //! as a function of height is smoothed at the scale of a groove and the wall's own profile
 //! (a much wider smoothing) taken away; grooves are the minima of what is left, into the
 //! wall, deeper than their surroundings by [`RillOptions::min_depth_mm`] and than the dip
-//! the wall's own bend leaves there (a neck or a lip's shoulder is not a rill). Minima of
+//! the wall's own bend leaves there, and not where the wall turns as at a corner (a neck
+//! or a lip's shoulder is not a rill). Minima of
 //! neighbouring strips at about the same height are linked into rills, and a straight line
 //! through each rill's heights against the arc gives its slope. Any other groove cut into
 //! the surface of revolution (a lip's groove, an incised line) is horizontal on the vessel
@@ -283,6 +284,11 @@ fn strip_grooves(
         if depth_mm <= bend_dip_mm(&wall, b, bin, options.wall_smoothing_mm) {
             continue;
         }
+        // A bend sharper than the wall's smoothing leaves a dip deeper than the estimate
+        // above; such a sharp turn is the profile's corner whatever the groove's depth.
+        if wall_turn_rad(members.iter().map(|&k| (vertices[k].2, vertices[k].1 * into_wall)), height_mm) > MAX_WALL_TURN_RAD {
+            continue;
+        }
         // The groove's bottom in the scan: the vertices of the strip within a bin of it.
         let bottom: Vec<usize> = members.iter().copied().filter(|&k| (vertices[k].2 - height_mm).abs() <= bin).collect();
         if bottom.is_empty() {
@@ -314,6 +320,36 @@ fn bend_dip_mm(wall: &[f64], b: usize, bin_mm: f64, smoothing_mm: f64) -> f64 {
     let second_derivative = (above - 2.0 * wall[b] + below) / (reach as f64 * bin_mm).powi(2);
     0.5 * smoothing_mm.powi(2) * second_derivative.max(0.0)
 }
+
+/// The turn of the wall across height `height_mm`, radians (positive: into the wall): the
+/// angle of its profile over the flank from [`GROOVE_HALF_WIDTH_MM`] to [`CORNER_FLANK_MM`]
+/// above less that below, each from the least-squares line of the strip's radius (into the
+/// wall) against height there; 0 where either flank holds fewer than 5 vertices.
+fn wall_turn_rad(values: impl Iterator<Item = (f64, f64)> + Clone, height_mm: f64) -> f64 {
+    let flank = |sign: f64| {
+        let pairs: Vec<(f64, f64)> = values
+            .clone()
+            .filter(|(height, _)| (GROOVE_HALF_WIDTH_MM..=CORNER_FLANK_MM).contains(&(sign * (height - height_mm))))
+            .collect();
+        if pairs.len() < 5 {
+            return None;
+        }
+        least_squares_line(&pairs, 1e-9).map(|(_, _, slope)| slope.atan())
+    };
+    match (flank(-1.0), flank(1.0)) {
+        (Some(below), Some(above)) => above - below,
+        _ => 0.0,
+    }
+}
+
+/// Half the width of a groove, which the turn of the wall across it leaves out, mm.
+const GROOVE_HALF_WIDTH_MM: f64 = 1.5;
+/// How far above and below a groove the turn of the wall across it is read, mm.
+const CORNER_FLANK_MM: f64 = 3.0;
+/// A wall that turns into itself by more than this across a groove (45 degrees within
+/// 6 mm) is a corner of the profile (a lip's shoulder, a carination), not a wall with a
+/// rill on it, radians.
+const MAX_WALL_TURN_RAD: f64 = std::f64::consts::FRAC_PI_4;
 
 /// The mean value per height bin of `(bin, value)` pairs, and the bins holding at least 3
 /// of them; `None` when fewer than 10 do. Bins with fewer than 3 are filled by linear
