@@ -20,9 +20,12 @@ use rayon::prelude::*;
 use sherd::mesh::io::read_mesh;
 use sherd::mesh::repair::{repair, RepairOptions};
 use sherd::mesh::{Point, Vector};
-use sherd::orient::{decimated_copy, mean_line_distance_mm, Axis, AxisRecord, OrientOptions};
+use sherd::orient::{decimated_copy, mean_line_distance_mm, Axis, OrientOptions};
 use sherd::refine::{refine, Criterion, RefineOptions};
 use sherd::statistics::nearest_rank_quantile;
+
+#[path = "../tests/support/evaluation.rs"]
+mod evaluation;
 
 const CRITERIA: [Criterion; 3] = [Criterion::Circles, Criterion::Profile, Criterion::Auto];
 const RIGHT_MM: f64 = 4.0;
@@ -35,20 +38,8 @@ struct Row {
     settled: Vec<Option<(f64, f64)>>,
 }
 
-/// The fields of a truth file (`sherd synth`'s or the report corpus's) this example reads.
-#[derive(serde::Deserialize)]
-struct Truth {
-    axis: AxisRecord,
-    part: String,
-}
-
-fn truth_axis(path: &Path) -> Option<(Axis, String)> {
-    let truth: Truth = serde_json::from_str(&std::fs::read_to_string(path).ok()?).ok()?;
-    Some((Axis::from_record(&truth.axis)?, truth.part))
-}
-
 fn evaluate(ply: &Path) -> Option<Row> {
-    let (truth, part) = truth_axis(&ply.with_extension("truth.json"))?;
+    let (truth, part) = evaluation::truth_of(ply)?;
     let mut mesh = read_mesh(ply).ok()?;
     repair(&mut mesh, &RepairOptions::default());
     let copy = decimated_copy(&mesh, &OrientOptions::default()).ok()?;
@@ -80,11 +71,11 @@ fn main() {
     }
     let mut plys: Vec<PathBuf> = Vec::new();
     for folder in &folders {
-        let Ok(entries) = std::fs::read_dir(folder) else {
+        let Ok(found) = evaluation::fragments_with_truth(folder) else {
             eprintln!("{}: cannot read the folder", folder.display());
             std::process::exit(2);
         };
-        plys.extend(entries.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.extension().is_some_and(|e| e == "ply") && p.with_extension("truth.json").exists()));
+        plys.extend(found);
     }
     plys.sort();
     let rows: Vec<Row> = plys.par_iter().filter_map(|p| evaluate(p)).collect();

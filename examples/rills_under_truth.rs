@@ -11,15 +11,10 @@ use std::path::{Path, PathBuf};
 use rayon::prelude::*;
 use sherd::mesh::io::read_mesh;
 use sherd::mesh::repair::{repair, RepairOptions};
-use sherd::orient::{Axis, AxisRecord};
 use sherd::profile::rills::{trace_rills_under, Rill, RillOptions};
 
-/// The fields of a truth file this example reads.
-#[derive(serde::Deserialize)]
-struct Truth {
-    axis: AxisRecord,
-    part: String,
-}
+#[path = "../tests/support/evaluation.rs"]
+mod evaluation;
 
 /// A fragment's part and its rills under its true axis.
 type Traced = (String, Vec<Rill>);
@@ -27,24 +22,23 @@ type Traced = (String, Vec<Rill>);
 /// The rills of one fragment under its true axis, with its part; `None` when the scan or
 /// its truth cannot be read.
 fn rills_of(ply: &Path) -> Option<Traced> {
-    let truth: Truth = serde_json::from_str(&std::fs::read_to_string(ply.with_extension("truth.json")).ok()?).ok()?;
-    let axis = Axis::from_record(&truth.axis)?;
+    let (axis, part) = evaluation::truth_of(ply)?;
     let mut mesh = read_mesh(ply).ok()?;
     repair(&mut mesh, &RepairOptions::default());
-    Some((truth.part, trace_rills_under(&mesh, &axis, &RillOptions::default())))
+    Some((part, trace_rills_under(&mesh, &axis, &RillOptions::default())))
 }
 
 fn main() {
-    let folders: Vec<String> = std::env::args().skip(1).collect();
+    let folders: Vec<PathBuf> = std::env::args().skip(1).map(PathBuf::from).collect();
     if folders.is_empty() {
         eprintln!("usage: rills_under_truth FOLDER [FOLDER...] (NAME.ply + NAME.truth.json)");
         std::process::exit(2);
     }
     for folder in folders {
-        let mut plys: Vec<PathBuf> = std::fs::read_dir(&folder)
-            .map(|entries| entries.filter_map(|e| e.ok().map(|e| e.path())).filter(|p| p.extension().is_some_and(|x| x == "ply")).collect())
-            .unwrap_or_default();
-        plys.sort();
+        let Ok(plys) = evaluation::fragments_with_truth(&folder) else {
+            eprintln!("{}: cannot read the folder", folder.display());
+            std::process::exit(2);
+        };
         let results: Vec<(Option<Traced>, PathBuf)> = plys.into_par_iter().map(|ply| (rills_of(&ply), ply)).collect();
         let (mut read, mut with_rills, mut total) = (0usize, 0usize, 0usize);
         for (result, ply) in &results {
@@ -66,6 +60,6 @@ fn main() {
                 );
             }
         }
-        println!("{folder}: {read} fragments, {with_rills} with rills, {total} rills in all");
+        println!("{}: {read} fragments, {with_rills} with rills, {total} rills in all", folder.display());
     }
 }

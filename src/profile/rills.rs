@@ -11,11 +11,11 @@
 //! (a much wider smoothing) taken away; grooves are the minima of what is left, into the
 //! wall, deeper than their surroundings by [`RillOptions::min_depth_mm`] and than the dip
 //! the wall's own bend leaves there, and not where the wall turns as at a corner (a neck
-//! or a lip's shoulder is not a rill). Minima of
-//! neighbouring strips at about the same height are linked into rills, and a straight line
-//! through each rill's heights against the arc gives its slope. Any other groove cut into
-//! the surface of revolution (a lip's groove, an incised line) is horizontal on the vessel
-//! too, and is traced and counted alike.
+//! or a lip's shoulder is not a rill). Minima of neighbouring strips at about the same
+//! height are linked into rills, and a straight line through each rill's heights against
+//! the arc gives its slope. Any other groove cut into the surface of revolution (a lip's
+//! groove, an incised line) is horizontal on the vessel too, and is traced and counted
+//! alike.
 
 use serde::{Deserialize, Serialize};
 
@@ -142,11 +142,13 @@ pub fn trace_rills_under(mesh: &Mesh, axis: &Axis, options: &RillOptions) -> Vec
 pub fn trace_rills(mesh: &Mesh, axis: &Axis, skins: &[Skin], options: &RillOptions) -> Vec<Rill> {
     let Some(reference) = mesh.centroid() else { return Vec::new() };
     let frame = axis.to_oriented_frame(&reference);
-    let normals = if mesh.is_point_cloud() { mesh.normals.clone() } else { Some(compute_vertex_normals(mesh, NormalWeighting::Area)) };
+    // A point cloud's own normals, a mesh's from its faces (as the skins were segmented).
+    let computed = (!mesh.is_point_cloud()).then(|| compute_vertex_normals(mesh, NormalWeighting::Area));
+    let normals = computed.as_deref().or(mesh.normals.as_deref());
     // Rills run round the wall. A floor or a flat lip, whose normals lie closer to the axis
     // than across it, carries none, and its turn into the wall is a corner of the profile.
     let on_wall = |i: usize| {
-        normals.as_ref().and_then(|normals| normals.get(i)).is_none_or(|n| {
+        normals.and_then(|normals| normals.get(i)).is_none_or(|n| {
             let axial = n.dot(&axis.direction).abs();
             axial * axial <= 0.5 * n.norm_squared()
         })

@@ -11,6 +11,33 @@ use sherd::orient::{mean_point_distance_mm, orient_automatic, Axis, OrientOption
 use sherd::statistics::nearest_rank_quantile;
 use sherd::synth::{SherdPart, SynthSherd};
 
+// ----------------------------------------------------------------------------- fragments on disk
+
+/// The fragments of `folder` that carry their truth: each `NAME.ply` with a
+/// `NAME.truth.json` beside it (`sherd synth`'s or the report corpus's), sorted by name.
+pub fn fragments_with_truth(folder: &std::path::Path) -> std::io::Result<Vec<std::path::PathBuf>> {
+    let mut plys: Vec<std::path::PathBuf> = std::fs::read_dir(folder)?
+        .filter_map(|entry| entry.ok().map(|entry| entry.path()))
+        .filter(|path| path.extension().is_some_and(|extension| extension == "ply") && path.with_extension("truth.json").exists())
+        .collect();
+    plys.sort();
+    Ok(plys)
+}
+
+/// The fields of a truth file the examples read.
+#[derive(serde::Deserialize)]
+struct TruthRecord {
+    axis: sherd::orient::AxisRecord,
+    part: String,
+}
+
+/// The true axis and the part (`rim`, `base`...) of the fragment `ply`, from its
+/// `NAME.truth.json`; `None` where that cannot be read.
+pub fn truth_of(ply: &std::path::Path) -> Option<(Axis, String)> {
+    let truth: TruthRecord = serde_json::from_str(&std::fs::read_to_string(ply.with_extension("truth.json")).ok()?).ok()?;
+    Some((Axis::from_record(&truth.axis)?, truth.part))
+}
+
 // ----------------------------------------------------------------------------- refinement corpus
 
 /// A simulated pre-orientation error: `truth` turned by `tilt_deg` about the horizontal
